@@ -1,0 +1,18 @@
+#pragma once
+// Errors that the user caused (bad file, bad option): the CLI prints them and exits with status 2.
+#include <stdexcept>
+#include <string>
+
+namespace lzb {
+
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Throws InputError("<where>: <what>") when cond is false.
+inline void require(bool cond, const std::string& where, const std::string& what) {
+  if (!cond) throw InputError(where + ": " + what);
+}
+
+}  // namespace lzb

@@ -1,0 +1,44 @@
+#pragma once
+// Per-pixel colour, depth (see camera.hpp for the convention) and expanded triangle ID.
+// Row 0 is the top row of the image.
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "src/core/color.hpp"
+#include "src/core/scene.hpp"
+
+namespace lzb {
+
+constexpr float kEmptyDepth = std::numeric_limits<float>::infinity();
+constexpr Rgba8 kBackground = packRgba8(0, 0, 0, 0);
+
+struct Framebuffer {
+  int width = 0, height = 0;
+  std::vector<float> depth;
+  std::vector<Rgba8> color;
+  std::vector<uint64_t> id;
+
+  Framebuffer() = default;
+  Framebuffer(int w, int h) { resize(w, h); }
+  void resize(int w, int h);
+  void clear();
+  size_t size() const { return size_t(width) * size_t(height); }
+  size_t index(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }
+  bool covered(size_t i) const { return id[i] != kNoId; }
+  size_t coveredCount() const;
+  // Keeps the nearer sample; equal depths break on the smaller ID, so any order gives one result.
+  void keepNearer(size_t i, float d, Rgba8 c, uint64_t triangle) {
+    if (d < depth[i] || (d == depth[i] && triangle < id[i])) {
+      depth[i] = d;
+      color[i] = c;
+      id[i] = triangle;
+    }
+  }
+};
+
+// Per-pixel minimum of (depth, id) of `other` into `into`: commutative and associative, the one
+// compositing rule for threads, passes and ranks.
+void compositeNearer(Framebuffer& into, const Framebuffer& other);
+
+}  // namespace lzb

@@ -1,0 +1,61 @@
+#pragma once
+// The interface every rendering method implements.
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "src/core/camera.hpp"
+#include "src/core/framebuffer.hpp"
+#include "src/core/scene.hpp"
+
+namespace lzb {
+
+// Which part of a frame's work this rank does: rank r of size ranks. A method must split its
+// work so that compositing every rank's framebuffer (compositeNearer) gives the same image as
+// size == 1, and must never key randomness by rank or thread.
+struct WorkShare {
+  int rank = 0;
+  int size = 1;
+};
+
+struct RenderOptions {
+  std::string method = "zbuffer";
+  int threads = 1;     // per rank, already resolved (> 0)
+  uint64_t seed = 1;   // randomness is keyed by (seed, frame, node, sample)
+  bool quiet = false;
+};
+
+// Per-frame measurements a method reports: stage times in order, and named counts.
+struct FrameStats {
+  std::vector<std::pair<std::string, double>> stageSeconds;
+  nlohmann::json counts = nlohmann::json::object();
+
+  void addStage(const std::string& name, double seconds) {
+    for (auto& [n, s] : stageSeconds)
+      if (n == name) {
+        s += seconds;
+        return;
+      }
+    stageSeconds.emplace_back(name, seconds);
+  }
+  void addCount(const std::string& name, double value) {
+    counts[name] = counts.value(name, 0.0) + value;
+  }
+};
+
+class Renderer {
+ public:
+  virtual ~Renderer() = default;
+  virtual std::string name() const = 0;
+  // One sentence for the report: how this method splits a frame across ranks.
+  virtual std::string decomposition() const = 0;
+  // Renders this rank's share of frame `frame` into fb (already sized and cleared), with colour
+  // filled in (see shadeFromIds for the exact methods).
+  virtual void render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
+                      FrameStats& stats) = 0;
+};
+
+}  // namespace lzb

@@ -1,0 +1,123 @@
+#pragma once
+// The scene model: what a scene requires and nothing more.
+//
+// A Node owns triangles (position, one colour, one normal each) and references other nodes
+// through Instances (node index + affine transform, never a copy). The graph is a DAG rooted at
+// Scene::root. Mesh positions are float in the node's own frame; transforms are double, so a
+// mesh far from the origin is stored recentred and placed by a double-precision translation.
+//
+// Triangle IDs ("expanded IDs") number every triangle of the fully instanced scene: a node's
+// expanded list is its own triangles [0, n) followed by the expanded lists of its instances in
+// order. So the ID of triangle t of a node reached through instances i1..ik is
+//   childOffset(root, i1) + childOffset(node1, i2) + ... + t.
+// kNoId marks a pixel that shows no triangle.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "src/core/bounds.hpp"
+#include "src/core/color.hpp"
+
+namespace lzb {
+
+constexpr uint64_t kNoId = ~uint64_t(0);
+
+struct Mesh {
+  std::vector<glm::vec3> positions;  // 3 per triangle, node frame
+  std::vector<glm::vec3> normals;    // 1 per triangle: unit geometric normal, cross(v1-v0, v2-v0)
+  std::vector<Rgba8> colors;         // 1 per triangle
+
+  size_t size() const { return colors.size(); }
+  bool empty() const { return colors.empty(); }
+  const glm::vec3& vertex(size_t tri, int corner) const { return positions[3 * tri + corner]; }
+  // Appends a triangle; returns false (and adds nothing) when it is degenerate or not finite.
+  bool add(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, Rgba8 color);
+  void append(const Mesh& other);
+};
+
+struct Instance {
+  uint32_t node = 0;
+  glm::dmat4 transform{1.0};  // child frame -> parent frame
+};
+
+struct Node {
+  std::string name;
+  Mesh mesh;
+  std::vector<Instance> instances;
+};
+
+// Triangles dropped at load time and why (reported, never silently lost).
+struct LoadStats {
+  uint64_t loaded = 0;      // triangles kept
+  uint64_t degenerate = 0;  // zero area (or collapsed after float rounding)
+  uint64_t nonFinite = 0;   // NaN or Inf vertices
+  void merge(const LoadStats& o) {
+    loaded += o.loaded;
+    degenerate += o.degenerate;
+    nonFinite += o.nonFinite;
+  }
+};
+
+struct Light {
+  glm::dvec3 direction{0.3, 0.8, 0.5};  // towards the light, world space (normalised on use)
+  double ambient = 0.25;
+};
+
+struct CameraSpec {
+  glm::dvec3 position{0.0, 0.0, 1.0};
+  glm::dvec3 lookAt{0.0};
+  glm::dvec3 up{0.0, 1.0, 0.0};
+  double fovyDegrees = 45.0;
+  double nearPlane = 0.0;  // 0: choose from the scene bounds
+  double farPlane = 0.0;   // 0: choose from the scene bounds
+};
+
+struct Scene {
+  std::string source;  // what it was loaded from, for messages and the report
+  std::vector<Node> nodes;
+  uint32_t root = 0;
+  Light light;
+  std::optional<CameraSpec> camera;      // from a scene file or generator; else framed on bounds
+  std::vector<CameraSpec> keyframes;     // camera path from a scene file
+  std::optional<int> width, height;      // image size from a scene file
+  LoadStats stats;
+
+  // Derived data; call finalize() after building or editing the graph.
+  std::vector<uint64_t> expandedCount;  // per node: triangles with all instances expanded
+  std::vector<Bounds> nodeBounds;       // per node, in its own frame
+  std::vector<std::vector<uint64_t>> instanceOffsets;  // per node: childOffset of each instance
+  // Throws InputError on a cycle or a dangling node index; fills the derived data.
+  void finalize();
+
+  const Node& rootNode() const { return nodes[root]; }
+  uint64_t uniqueTriangles() const;                 // stored once each
+  uint64_t expandedTriangles() const { return expandedCount[root]; }
+  const Bounds& bounds() const { return nodeBounds[root]; }
+  // Offset of instance i's expanded list inside node n's expanded list.
+  uint64_t childOffset(uint32_t node, size_t instance) const { return instanceOffsets[node][instance]; }
+  uint32_t addNode(std::string name);
+
+  // Which stored triangle an expanded ID names, and where (node frame -> world).
+  struct TriangleRef {
+    uint32_t node;
+    uint32_t triangle;
+    glm::dmat4 transform;
+  };
+  std::optional<TriangleRef> resolve(uint64_t id) const;
+};
+
+// One mesh drawn with a world transform: the scene graph flattened to its leaves.
+struct DrawItem {
+  uint32_t node;
+  glm::dmat4 transform;  // node frame -> world
+  uint64_t idBase;       // expanded ID of the node's triangle 0 at this place
+};
+
+// Every (node with triangles, world transform) pair in expanded-ID order. Memory grows with the
+// number of instances, so callers that face 10^12-triangle scenes traverse the graph instead.
+std::vector<DrawItem> flattenScene(const Scene& scene);
+
+}  // namespace lzb
