@@ -84,10 +84,10 @@ Frustum Camera::frustum() const {
   const glm::dvec3 l = forward_ - tanHalfX_ * right_, r = forward_ + tanHalfX_ * right_;
   const glm::dvec3 b = forward_ - tanHalfY_ * up_, t = forward_ + tanHalfY_ * up_;
   auto through = [&](const glm::dvec3& n) { return Plane{n, -glm::dot(n, position_)}; };
-  f.planes[0] = through(glm::normalize(glm::cross(up_, l)));
-  f.planes[1] = through(glm::normalize(glm::cross(r, up_)));
-  f.planes[2] = through(glm::normalize(glm::cross(b, right_)));
-  f.planes[3] = through(glm::normalize(glm::cross(right_, t)));
+  f.planes[0] = through(glm::normalize(glm::cross(l, up_)));
+  f.planes[1] = through(glm::normalize(glm::cross(up_, r)));
+  f.planes[2] = through(glm::normalize(glm::cross(right_, b)));
+  f.planes[3] = through(glm::normalize(glm::cross(t, right_)));
   f.planes[4] = Plane{forward_, -glm::dot(forward_, position_) - near_};
   f.planes[5] = Plane{-forward_, glm::dot(forward_, position_) + far_};
   return f;

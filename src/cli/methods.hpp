@@ -1,0 +1,18 @@
+#pragma once
+// The registry of --method values.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "src/core/renderer.hpp"
+
+namespace lzb {
+
+const std::vector<std::string>& methodNames();
+// Throws InputError naming `field` when `method` is not a known method.
+void checkMethodName(const std::string& method, const std::string& field);
+// Throws InputError naming --method for an unknown name.
+std::unique_ptr<Renderer> createRenderer(const std::string& method, const Scene& scene,
+                                         const RenderOptions& options);
+
+}  // namespace lzb

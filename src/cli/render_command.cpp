@@ -1,0 +1,168 @@
+#include "src/cli/render_command.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "mpi/composite.hpp"
+#include "mpi/frame_driver.hpp"
+#include "src/cli/methods.hpp"
+#include "src/cli/report.hpp"
+#include "src/core/atomic_file.hpp"
+#include "src/core/error.hpp"
+#include "src/core/progress.hpp"
+#include "src/core/system.hpp"
+#include "src/core/timer.hpp"
+#include "src/image/frame_io.hpp"
+#include "src/image/metrics.hpp"
+#include "src/scene/load.hpp"
+
+namespace lzb {
+
+namespace fs = std::filesystem;
+
+void addRenderOptions(CLI::App& c, RenderArgs& a) {
+  c.add_option("scene", a.scene,
+               "mesh file (OBJ, PLY, OFF, STL, glTF, ...), scene.toml, or builtin:NAME?key=value")
+      ->required();
+  c.add_option("--method,-m", a.method, "rendering method: zbuffer | raycast")->capture_default_str();
+  c.add_option("--reference", a.reference,
+               "also render this exact method and report accuracy against it: zbuffer | raycast");
+  c.add_option("--out,-o", a.out, "output folder for frame_NNNN.png/.exr and report.json")
+      ->capture_default_str();
+  c.add_option("--threads,-t", a.threads, "threads per rank (0: the cores this rank owns)")
+      ->capture_default_str();
+  c.add_option("--seed", a.seed, "seed of all randomness (runs repeat exactly)")->capture_default_str();
+  c.add_option("--width", a.width, "image width (0: the scene file's, else 640)")->capture_default_str();
+  c.add_option("--height", a.height, "image height (0: the scene file's, else 480)")
+      ->capture_default_str();
+  c.add_option("--frames", a.frames,
+               "frames along the camera path (scene keyframes, else a circle around the centre)")
+      ->capture_default_str();
+  c.add_option("--fov", a.fov, "vertical field of view in degrees (0: the scene's, else 45)")
+      ->capture_default_str();
+  c.add_option("--near", a.nearPlane, "near plane distance (0: the scene's, else from the bounds)")
+      ->capture_default_str();
+  c.add_option("--far", a.farPlane, "far plane distance (0: the scene's, else from the bounds)")
+      ->capture_default_str();
+  c.add_flag("--quiet,-q", a.quiet, "no progress lines");
+}
+
+namespace {
+
+void validate(const RenderArgs& a) {
+  checkMethodName(a.method, "--method");
+  if (!a.reference.empty()) checkMethodName(a.reference, "--reference");
+  require(a.threads >= 0 && a.threads <= 1024, "--threads", "must be in [0, 1024]");
+  require(a.frames >= 1 && a.frames <= 1000000, "--frames", "must be in [1, 1000000]");
+  require(a.width >= 0 && a.height >= 0, "--width/--height", "must not be negative");
+  require(a.fov >= 0.0 && a.fov < 180.0, "--fov", "must be in (0, 180) degrees");
+  require(a.nearPlane >= 0.0, "--near", "must be > 0");
+  require(a.farPlane >= 0.0, "--far", "must be > 0");
+}
+
+// Creates the output folder and proves it writable before any work, so a bad --out costs nothing
+// and leaves nothing behind. Root only; the verdict is broadcast.
+void prepareOutput(const mpi::Group& g, const std::string& out) {
+  std::string problem;
+  if (g.root()) {
+    std::error_code ec;
+    fs::create_directories(out, ec);
+    if (ec) {
+      problem = "cannot create the folder: " + ec.message();
+    } else {
+      const fs::path probe = fs::path(out) / ".lzb-write-probe";
+      std::ofstream(probe) << "probe";
+      if (!fs::exists(probe)) problem = "the folder is not writable";
+      fs::remove(probe, ec);
+    }
+  }
+  problem = mpi::broadcastString(g, problem);
+  require(problem.empty(), "--out " + out, problem);
+}
+
+// The frame loop: every rank renders its share of each frame; the root writes images and records.
+void renderFrames(const RenderArgs& a, const mpi::Group& g, const Scene& scene, const CameraSpec& base,
+                  int width, int height, Renderer& renderer, Renderer* reference, Report& report,
+                  bool talk) {
+  Progress progress("rendering " + std::to_string(a.frames) + " frames", uint64_t(a.frames),
+                    talk && a.frames > 1);
+  for (int f = 0; f < a.frames; ++f) {
+    const CameraSpec spec = withClipPlanes(pathCamera(scene, base, f, a.frames), scene.bounds());
+    const Camera camera(spec, width, height, "camera (frame " + std::to_string(f) + ")");
+    Framebuffer image;
+    nlohmann::json frame = mpi::renderFrame(g, renderer, camera, f, image);
+    if (reference) {
+      Framebuffer exact;
+      nlohmann::json ref = mpi::renderFrame(g, *reference, camera, f, exact);
+      if (g.root()) {
+        frame["accuracy"] = toJson(compare(image, exact));
+        frame["reference_seconds"] = ref["seconds"];
+      }
+    }
+    if (g.root()) {
+      writeFrame(image, a.out, f);
+      report.addFrame(f, camera, frame, image);
+    }
+    progress.add();
+  }
+  progress.done();
+}
+
+}  // namespace
+
+int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& commandLine) {
+  Stopwatch total;
+  validate(a);
+  prepareOutput(g, a.out);
+  const bool talk = g.root() && !a.quiet;
+
+  Stopwatch loadClock;
+  const Scene scene = loadScene(a.scene, !talk);
+  require(scene.expandedTriangles() > 0, a.scene, "the scene has no triangles");
+  const double loadSeconds = loadClock.seconds();
+
+  RenderOptions options;
+  options.method = a.method;
+  options.threads = a.threads > 0 ? a.threads : coresOwned();
+  options.seed = a.seed;
+  options.quiet = !talk;
+  useThreads(options.threads);
+
+  const int width = a.width ? a.width : scene.width.value_or(640);
+  const int height = a.height ? a.height : scene.height.value_or(480);
+  CameraSpec base = scene.camera ? *scene.camera : frameBounds(scene.bounds());
+  if (a.fov > 0.0) base.fovyDegrees = a.fov;
+  if (a.nearPlane > 0.0) base.nearPlane = a.nearPlane;
+  if (a.farPlane > 0.0) base.farPlane = a.farPlane;
+  // Validate the first camera before any rendering work starts.
+  Camera(withClipPlanes(base, scene.bounds()), width, height, "camera");
+
+  Stopwatch setupClock;
+  auto renderer = createRenderer(a.method, scene, options);
+  std::unique_ptr<Renderer> reference;
+  if (!a.reference.empty()) reference = createRenderer(a.reference, scene, options);
+  const double setupSeconds = setupClock.seconds();
+
+  Report report(a, options, g, scene, commandLine);
+  report.setMethod(*renderer, reference.get());
+  report.setSetup(loadSeconds, setupSeconds);
+
+  try {
+    renderFrames(a, g, scene, base, width, height, *renderer, reference.get(), report, talk);
+  } catch (const std::exception& e) {
+    // Past this point an error may hit one rank only (say, a full disk at the root): the others
+    // would wait forever in the next collective, so a multi-rank run aborts them all.
+    if (g.size == 1) throw;
+    std::fprintf(stderr, "lzb: error on rank %d: %s\n", g.rank, e.what());
+    MPI_Abort(g.comm, 2);
+  }
+  if (g.root()) {
+    report.setTotal(total.seconds());
+    report.write(fs::path(a.out) / "report.json");
+    report.printSummary(stdout);
+  }
+  return 0;
+}
+
+}  // namespace lzb

@@ -1,0 +1,30 @@
+#pragma once
+// `lzb render SCENE`: render frames with one method (optionally against a reference), write the
+// images and report.json at the root rank.
+#include <cstdint>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "mpi/group.hpp"
+
+namespace lzb {
+
+struct RenderArgs {
+  std::string scene;
+  std::string method = "zbuffer";
+  std::string reference;  // empty: none
+  std::string out = "out";
+  int threads = 0;  // 0: the cores this rank owns
+  uint64_t seed = 1;
+  int width = 0, height = 0;  // 0: the scene file's, else 640x480
+  int frames = 1;
+  double fov = 0.0, nearPlane = 0.0, farPlane = 0.0;  // 0: scene's or automatic
+  bool quiet = false;
+};
+
+void addRenderOptions(CLI::App& command, RenderArgs& args);
+// Returns the process exit status. Throws InputError for bad input (on every rank alike).
+int runRender(const RenderArgs& args, const mpi::Group& g, const std::string& commandLine);
+
+}  // namespace lzb

@@ -1,0 +1,121 @@
+#include "src/cli/report.hpp"
+
+#include <algorithm>
+#include <vector>
+
+#include "src/core/atomic_file.hpp"
+#include "src/core/system.hpp"
+
+namespace lzb {
+
+namespace {
+
+nlohmann::json vec(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const size_t m = v.size() / 2;
+  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
+}
+
+}  // namespace
+
+nlohmann::json sceneSummary(const Scene& scene) {
+  return {{"source", scene.source},
+          {"triangles_unique", scene.uniqueTriangles()},
+          {"triangles_expanded", scene.expandedTriangles()},
+          {"nodes", scene.nodes.size()},
+          {"dropped_degenerate", scene.stats.degenerate},
+          {"dropped_nonfinite", scene.stats.nonFinite},
+          {"bounds", {{"min", vec(scene.bounds().lo)}, {"max", vec(scene.bounds().hi)}}}};
+}
+
+Report::Report(const RenderArgs& a, const RenderOptions& options, const mpi::Group& g,
+               const Scene& scene, const std::string& commandLine)
+    : out_(a.out) {
+  json_ = {{"lzb_version", "0.1"},
+           {"command", commandLine},
+           {"scene", sceneSummary(scene)},
+           {"method", a.method},
+           {"parameters",
+            {{"seed", a.seed},
+             {"frames", a.frames},
+             {"reference", a.reference.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.reference)},
+             {"fov", a.fov},
+             {"near", a.nearPlane},
+             {"far", a.farPlane}}},
+           {"ranks", g.size},
+           {"threads", options.threads},
+           {"frames", nlohmann::json::array()}};
+}
+
+void Report::setMethod(const Renderer& method, const Renderer* reference) {
+  json_["decomposition"] = method.decomposition();
+  if (reference) json_["reference_decomposition"] = reference->decomposition();
+}
+
+void Report::setSetup(double loadSeconds, double setupSeconds) {
+  json_["load_seconds"] = loadSeconds;
+  json_["setup_seconds"] = setupSeconds;
+}
+
+void Report::addFrame(int frame, const Camera& camera, nlohmann::json entry, const Framebuffer& image) {
+  json_["width"] = camera.width();
+  json_["height"] = camera.height();
+  entry["frame"] = frame;
+  entry["covered_pixels"] = image.coveredCount();
+  entry["camera"] = {{"position", vec(camera.position())},
+                     {"look_at", vec(camera.spec().lookAt)},
+                     {"fov", camera.fovyDegrees()},
+                     {"near", camera.nearPlane()},
+                     {"far", camera.farPlane()}};
+  json_["frames"].push_back(std::move(entry));
+}
+
+void Report::setTotal(double seconds) {
+  std::vector<double> times;
+  double rate = 1.0;
+  bool haveAccuracy = false;
+  for (const auto& f : json_["frames"]) {
+    times.push_back(f["seconds"].get<double>());
+    if (f.contains("accuracy")) {
+      haveAccuracy = true;
+      rate = std::min(rate, f["accuracy"]["correct_pixel_rate"].get<double>());
+    }
+  }
+  double mean = 0.0;
+  for (double t : times) mean += t / double(times.size());
+  json_["summary"] = {{"total_seconds", seconds},
+                      {"mean_frame_seconds", mean},
+                      {"median_frame_seconds", median(times)},
+                      {"peak_memory_bytes_root", peakMemoryBytes()}};
+  if (haveAccuracy) json_["summary"]["min_correct_pixel_rate"] = rate;
+}
+
+void Report::write(const std::filesystem::path& path) const {
+  writeTextAtomically(path, json_.dump(2) + "\n");
+}
+
+void Report::printSummary(std::FILE* out) const {
+  const auto& s = json_["summary"];
+  const auto frames = json_["frames"].size();
+  std::fprintf(out, "lzb: %s, method %s, %d rank(s) x %d thread(s), %dx%d\n",
+               json_["scene"]["source"].get<std::string>().c_str(),
+               json_["method"].get<std::string>().c_str(), json_["ranks"].get<int>(),
+               json_["threads"].get<int>(), json_["width"].get<int>(), json_["height"].get<int>());
+  std::fprintf(out, "  triangles: %llu unique, %llu expanded\n",
+               (unsigned long long)json_["scene"]["triangles_unique"].get<uint64_t>(),
+               (unsigned long long)json_["scene"]["triangles_expanded"].get<uint64_t>());
+  std::fprintf(out, "  frame time: %.4f s median over %zu frame(s)\n",
+               s["median_frame_seconds"].get<double>(), frames);
+  if (s.contains("min_correct_pixel_rate"))
+    std::fprintf(out, "  accuracy vs %s: correct-pixel rate >= %.5f\n",
+                 json_["parameters"]["reference"].get<std::string>().c_str(),
+                 s["min_correct_pixel_rate"].get<double>());
+  std::fprintf(out, "  images: %s/frame_%04d.png (.exr)%s\n", out_.c_str(), 0,
+               frames > 1 ? " ..." : "");
+  std::fprintf(out, "  report: %s/report.json\n", out_.c_str());
+}
+
+}  // namespace lzb

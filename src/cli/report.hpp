@@ -1,0 +1,35 @@
+#pragma once
+// report.json: parameters, per-frame and per-stage times (per rank), counts, peak memory and,
+// with a reference, accuracy. Built at the root rank.
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "mpi/group.hpp"
+#include "src/cli/render_command.hpp"
+#include "src/core/renderer.hpp"
+
+namespace lzb {
+
+nlohmann::json sceneSummary(const Scene& scene);
+
+class Report {
+ public:
+  Report(const RenderArgs& args, const RenderOptions& options, const mpi::Group& g, const Scene& scene,
+         const std::string& commandLine);
+  void setMethod(const Renderer& method, const Renderer* reference);
+  void setSetup(double loadSeconds, double setupSeconds);
+  void addFrame(int frame, const Camera& camera, nlohmann::json entry, const Framebuffer& image);
+  void setTotal(double seconds);
+  void write(const std::filesystem::path& path) const;  // atomically
+  void printSummary(std::FILE* out) const;
+  const nlohmann::json& json() const { return json_; }
+
+ private:
+  nlohmann::json json_;
+  std::string out_;
+};
+
+}  // namespace lzb

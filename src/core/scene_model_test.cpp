@@ -1,0 +1,139 @@
+#include "src/core/scene.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "src/core/error.hpp"
+#include "src/core/framebuffer.hpp"
+
+namespace lzb {
+namespace {
+
+Mesh quad(Rgba8 c) {
+  Mesh m;
+  m.add({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, c);
+  m.add({0, 0, 0}, {1, 1, 0}, {0, 1, 0}, c);
+  return m;
+}
+
+TEST(Mesh, DropsDegenerateAndNonFiniteTriangles) {
+  Mesh m;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  EXPECT_TRUE(m.add({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0));
+  EXPECT_FALSE(m.add({0, 0, 0}, {1, 1, 1}, {2, 2, 2}, 0));  // collinear
+  EXPECT_FALSE(m.add({0, 0, 0}, {0, 0, 0}, {0, 1, 0}, 0));  // repeated vertex
+  EXPECT_FALSE(m.add({nan, 0, 0}, {1, 0, 0}, {0, 1, 0}, 0));
+  EXPECT_FALSE(m.add({0, 0, 0}, {inf, 0, 0}, {0, 1, 0}, 0));
+  // Tiny but valid: the normal is computed in double, so it does not underflow.
+  EXPECT_TRUE(m.add({0, 0, 0}, {1e-25f, 0, 0}, {0, 1e-25f, 0}, 0));
+  EXPECT_EQ(m.size(), 2u);
+  EXPECT_NEAR(m.normals[1].z, 1.0f, 1e-6f);
+}
+
+// Root: 2 own triangles, instance of A (2 triangles) twice, instance of B which holds A thrice.
+Scene nested() {
+  Scene s;
+  const uint32_t root = s.addNode("root");
+  const uint32_t a = s.addNode("a");
+  const uint32_t b = s.addNode("b");
+  s.nodes[root].mesh = quad(1);
+  s.nodes[a].mesh = quad(2);
+  for (int i = 0; i < 3; ++i)
+    s.nodes[b].instances.push_back({a, glm::translate(glm::dmat4(1.0), glm::dvec3(0, 0, i))});
+  s.nodes[root].instances.push_back({a, glm::translate(glm::dmat4(1.0), glm::dvec3(5, 0, 0))});
+  s.nodes[root].instances.push_back({a, glm::translate(glm::dmat4(1.0), glm::dvec3(7, 0, 0))});
+  s.nodes[root].instances.push_back({b, glm::translate(glm::dmat4(1.0), glm::dvec3(0, 9, 0))});
+  s.root = root;
+  s.finalize();
+  return s;
+}
+
+TEST(Scene, ExpandedCountsOffsetsAndBounds) {
+  Scene s = nested();
+  EXPECT_EQ(s.uniqueTriangles(), 4u);
+  EXPECT_EQ(s.expandedTriangles(), 2u + 2 + 2 + 6);
+  EXPECT_EQ(s.childOffset(0, 0), 2u);
+  EXPECT_EQ(s.childOffset(0, 1), 4u);
+  EXPECT_EQ(s.childOffset(0, 2), 6u);
+  EXPECT_DOUBLE_EQ(s.bounds().hi.x, 8.0);
+  EXPECT_DOUBLE_EQ(s.bounds().hi.y, 10.0);
+  EXPECT_DOUBLE_EQ(s.bounds().hi.z, 2.0);
+}
+
+TEST(Scene, ResolveAndFlattenAgree) {
+  Scene s = nested();
+  const std::vector<DrawItem> items = flattenScene(s);
+  ASSERT_EQ(items.size(), 1u + 2 + 3);
+  uint64_t checked = 0;
+  for (const DrawItem& item : items)
+    for (uint32_t t = 0; t < s.nodes[item.node].mesh.size(); ++t) {
+      auto ref = s.resolve(item.idBase + t);
+      ASSERT_TRUE(ref);
+      EXPECT_EQ(ref->node, item.node);
+      EXPECT_EQ(ref->triangle, t);
+      EXPECT_EQ(ref->transform, item.transform);
+      ++checked;
+    }
+  EXPECT_EQ(checked, s.expandedTriangles());
+  EXPECT_FALSE(s.resolve(s.expandedTriangles()));
+  EXPECT_FALSE(s.resolve(kNoId));
+}
+
+TEST(Scene, RejectsCyclesAndDanglingReferences) {
+  Scene s;
+  const uint32_t a = s.addNode("a"), b = s.addNode("b");
+  s.nodes[a].mesh = quad(1);
+  s.nodes[a].instances.push_back({b, glm::dmat4(1.0)});
+  s.nodes[b].instances.push_back({a, glm::dmat4(1.0)});
+  EXPECT_THROW(s.finalize(), InputError);
+  s.nodes[b].instances = {{7, glm::dmat4(1.0)}};
+  EXPECT_THROW(s.finalize(), InputError);
+}
+
+TEST(Scene, HugeNestedCountsDoNotOverflow) {
+  // 2x2 instancing 25 levels deep over 2 triangles: 2 * 4^25 ≈ 2.25e15 expanded triangles.
+  Scene s;
+  uint32_t child = s.addNode("leaf");
+  s.nodes[child].mesh = quad(1);
+  for (int level = 0; level < 25; ++level) {
+    const uint32_t parent = s.addNode("level" + std::to_string(level));
+    for (int i = 0; i < 4; ++i)
+      s.nodes[parent].instances.push_back(
+          {child, glm::translate(glm::dmat4(1.0), glm::dvec3(i % 2, 0, i / 2) * std::ldexp(1.0, level))});
+    child = parent;
+  }
+  s.root = child;
+  s.finalize();
+  EXPECT_EQ(s.expandedTriangles(), 2ull << 50);
+  auto ref = s.resolve(s.expandedTriangles() - 1);
+  ASSERT_TRUE(ref);
+  EXPECT_EQ(ref->triangle, 1u);
+  EXPECT_DOUBLE_EQ(ref->transform[3][0], std::ldexp(1.0, 25) - 1.0);
+}
+
+TEST(Framebuffer, CompositeIsOrderIndependent) {
+  Framebuffer a(4, 1), b(4, 1), c(4, 1);
+  a.keepNearer(0, 1.0f, 10, 5);
+  b.keepNearer(0, 1.0f, 20, 3);  // same depth: the smaller ID wins
+  c.keepNearer(0, 2.0f, 30, 1);
+  b.keepNearer(1, 0.5f, 40, 9);
+  Framebuffer ab = a, ba = b;
+  compositeNearer(ab, b);
+  compositeNearer(ab, c);
+  compositeNearer(ba, c);
+  compositeNearer(ba, a);
+  EXPECT_EQ(ab.id, ba.id);
+  EXPECT_EQ(ab.color, ba.color);
+  EXPECT_EQ(ab.id[0], 3u);
+  EXPECT_EQ(ab.id[1], 9u);
+  EXPECT_EQ(ab.id[2], kNoId);
+  EXPECT_EQ(ab.coveredCount(), 2u);
+}
+
+}  // namespace
+}  // namespace lzb
