@@ -1,0 +1,254 @@
+#include "src/image/frame_io.hpp"
+
+#include <OpenImageIO/imageio.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "src/core/error.hpp"
+#include "src/image/compare.hpp"
+
+namespace lzb {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh empty directory per test, removed afterwards.
+class FrameIoTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ =
+        fs::temp_directory_path() / ("lzb_image_" + std::to_string(getpid()) + "_" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(dir_)) names.push_back(e.path().filename());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+  fs::path dir_;
+};
+
+// Every byte value, depths incl. +inf, IDs incl. > 2^32 and kNoId.
+Framebuffer sampleFrame() {
+  Framebuffer fb(37, 23);
+  for (size_t i = 0; i < fb.size(); ++i) {
+    if (i % 5 == 0) continue;  // empty: kBackground, +inf, kNoId
+    const uint8_t v = uint8_t(i * 7);
+    fb.color[i] = packRgba8(v, uint8_t(255 - v), uint8_t(i), uint8_t(i % 3 == 0 ? 255 : v));
+    fb.depth[i] = 0.001f * float(i) + 1e-7f;
+    fb.id[i] = (uint64_t(i) << 33) + 0xfffffff0ull + i;
+  }
+  fb.depth[1] = std::numeric_limits<float>::max();
+  fb.id[1] = kNoId - 1;
+  fb.id[2] = 0;
+  fb.id[3] = 0xffffffffull;  // low half equal to kNoId's
+  return fb;
+}
+
+void expectSameFrame(const Framebuffer& a, const Framebuffer& b) {
+  ASSERT_EQ(a.width, b.width);
+  ASSERT_EQ(a.height, b.height);
+  for (size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a.color[i], b.color[i]) << "pixel " << i;
+    ASSERT_EQ(a.id[i], b.id[i]) << "pixel " << i;
+    ASSERT_TRUE(a.depth[i] == b.depth[i])
+        << "pixel " << i << ": " << a.depth[i] << " vs " << b.depth[i];
+  }
+}
+
+TEST_F(FrameIoTest, FrameStemPadsToFourDigits) {
+  EXPECT_EQ(frameStem(7), "frame_0007");
+  EXPECT_EQ(frameStem(12345), "frame_12345");
+}
+
+TEST_F(FrameIoTest, ExrRoundTripIsExact) {
+  const Framebuffer fb = sampleFrame();
+  writeFrame(fb, dir_, 3);
+  EXPECT_EQ(entries(), (std::vector<std::string>{"frame_0003.exr", "frame_0003.png"}));
+  const Framebuffer back = readFrameExr(dir_ / "frame_0003.exr");
+  expectSameFrame(fb, back);
+  EXPECT_TRUE(std::isinf(back.depth[0]) && back.depth[0] > 0);
+  EXPECT_EQ(back.id[0], kNoId);
+  EXPECT_EQ(back.id[1], kNoId - 1);
+  EXPECT_EQ(back.id[3], 0xffffffffull);
+}
+
+TEST_F(FrameIoTest, ExrChannelsAreNamedAndTyped) {
+  writeFrame(sampleFrame(), dir_, 0);
+  auto in = OIIO::ImageInput::open((dir_ / "frame_0000.exr").string());
+  ASSERT_TRUE(in);
+  const OIIO::ImageSpec& spec = in->spec();
+  std::map<std::string, OIIO::TypeDesc> formats;
+  for (int c = 0; c < spec.nchannels; ++c)
+    formats[spec.channelnames[size_t(c)]] = spec.channelformat(c);
+  ASSERT_EQ(formats.size(), 7u);
+  EXPECT_EQ(formats.at("R"), OIIO::TypeDesc::HALF);
+  EXPECT_EQ(formats.at("A"), OIIO::TypeDesc::HALF);
+  EXPECT_EQ(formats.at("Z"), OIIO::TypeDesc::FLOAT);
+  EXPECT_EQ(formats.at("ID"), OIIO::TypeDesc::UINT32);
+  EXPECT_EQ(formats.at("ID.hi"), OIIO::TypeDesc::UINT32);
+}
+
+TEST_F(FrameIoTest, PngHoldsTheColourBytes) {
+  const Framebuffer fb = sampleFrame();
+  writeFrame(fb, dir_, 12);
+  // Ask for the bytes as stored: OIIO would otherwise premultiply them by alpha.
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  auto in = OIIO::ImageInput::open((dir_ / "frame_0012.png").string(), &config);
+  ASSERT_TRUE(in);
+  ASSERT_EQ(in->spec().nchannels, 4);
+  ASSERT_EQ(in->spec().format, OIIO::TypeDesc::UINT8);
+  std::vector<uint8_t> bytes(4 * fb.size());
+  ASSERT_TRUE(in->read_image(0, 0, 0, 4, OIIO::TypeDesc::UINT8, bytes.data()));
+  for (size_t i = 0; i < fb.size(); ++i)
+    for (int k = 0; k < 4; ++k)
+      ASSERT_EQ(bytes[4 * i + size_t(k)], channel(fb.color[i], k)) << "pixel " << i << " ch " << k;
+  EXPECT_EQ(bytes[3], 0);  // background alpha
+}
+
+TEST_F(FrameIoTest, OverwritesAnExistingFrame) {
+  Framebuffer fb = sampleFrame();
+  writeFrame(fb, dir_, 1);
+  fb.id[7] = 42;
+  writeFrame(fb, dir_, 1);
+  EXPECT_EQ(readFrameExr(dir_ / "frame_0001.exr").id[7], 42u);
+  EXPECT_EQ(entries().size(), 2u);
+}
+
+TEST_F(FrameIoTest, MissingDirectoryThrowsAndCreatesNothing) {
+  const fs::path missing = dir_ / "no" / "such";
+  try {
+    writeFrame(sampleFrame(), missing, 0);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("frame_0000.exr"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "no"));
+  EXPECT_TRUE(entries().empty());
+}
+
+TEST_F(FrameIoTest, DirectoryThatIsAFileThrows) {
+  std::ofstream(dir_ / "plain") << "x";
+  EXPECT_THROW(writeFrame(sampleFrame(), dir_ / "plain", 0), InputError);
+  EXPECT_EQ(entries(), std::vector<std::string>{"plain"});
+}
+
+TEST_F(FrameIoTest, UnwritableDirectoryThrowsAndLeavesNothing) {
+  if (geteuid() == 0) GTEST_SKIP() << "root ignores directory permissions";
+  const fs::path locked = dir_ / "locked";
+  fs::create_directory(locked);
+  fs::permissions(locked, fs::perms::owner_read | fs::perms::owner_exec);
+  EXPECT_THROW(writeFrame(sampleFrame(), locked, 0), InputError);
+  fs::permissions(locked, fs::perms::owner_all);
+  EXPECT_TRUE(fs::is_empty(locked));
+}
+
+TEST_F(FrameIoTest, FailedRenameLeavesNoTemporary) {
+  // A non-empty directory squats on the EXR's name: the temporary is written, the rename fails.
+  fs::create_directories(dir_ / "frame_0000.exr" / "keep");
+  try {
+    writeFrame(sampleFrame(), dir_, 0);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("frame_0000.exr"), std::string::npos) << e.what();
+  }
+  // Neither a temporary nor the PNG (the EXR goes first).
+  EXPECT_EQ(entries(), std::vector<std::string>{"frame_0000.exr"});
+}
+
+TEST_F(FrameIoTest, MissingFileThrowsNamingIt) {
+  const fs::path path = dir_ / "absent.exr";
+  try {
+    readFrameExr(path);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(FrameIoTest, GarbageFileThrowsNamingIt) {
+  const fs::path path = dir_ / "garbage.exr";
+  std::ofstream(path, std::ios::binary) << "this is not an OpenEXR file at all";
+  try {
+    readFrameExr(path);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(FrameIoTest, TruncatedFileThrows) {
+  writeFrame(sampleFrame(), dir_, 0);
+  const fs::path path = dir_ / "frame_0000.exr";
+  fs::resize_file(path, fs::file_size(path) / 2);
+  EXPECT_THROW(readFrameExr(path), InputError);
+}
+
+TEST_F(FrameIoTest, MissingIdChannelIsNamed) {
+  // An ordinary RGBA + Z EXR, as another tool would write it.
+  const fs::path path = dir_ / "plain.exr";
+  OIIO::ImageSpec spec(4, 3, 5, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"R", "G", "B", "A", "Z"};
+  std::vector<float> pixels(4 * 3 * 5, 0.5f);
+  auto out = OIIO::ImageOutput::create(path.string());
+  ASSERT_TRUE(out && out->open(path.string(), spec));
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+  out->close();
+  try {
+    readFrameExr(path);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path.string()), std::string::npos) << what;
+    EXPECT_NE(what.find("\"ID\""), std::string::npos) << what;
+  }
+}
+
+TEST_F(FrameIoTest, PngIsNotAFrameExr) {
+  writeFrame(sampleFrame(), dir_, 0);
+  try {
+    readFrameExr(dir_ / "frame_0000.png");
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("\"Z\""), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(FrameIoTest, CompareFilesOfOneFrameIsPerfect) {
+  writeFrame(sampleFrame(), dir_, 0);
+  const fs::path exr = dir_ / "frame_0000.exr";
+  const nlohmann::json j = compareFiles(exr, exr);
+  EXPECT_EQ(j.at("correct_pixel_rate"), 1.0);
+  EXPECT_EQ(j.at("rmse"), 0.0);
+  EXPECT_TRUE(j.at("psnr").is_null());
+}
+
+TEST_F(FrameIoTest, CompareFilesOfDifferentSizesNamesBoth) {
+  writeFrame(sampleFrame(), dir_, 0);
+  writeFrame(Framebuffer(5, 5), dir_, 1);
+  const fs::path a = dir_ / "frame_0000.exr", b = dir_ / "frame_0001.exr";
+  try {
+    compareFiles(a, b);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(a.string()), std::string::npos) << what;
+    EXPECT_NE(what.find(b.string()), std::string::npos) << what;
+  }
+}
+
+}  // namespace
+}  // namespace lzb
