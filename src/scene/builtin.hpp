@@ -1,0 +1,33 @@
+#pragma once
+// Built-in scene generators, named by a spec "NAME?key=value&key=value":
+//   chessboard?n=N&block=B            n x n squares, nested 2x2 instancing above B x B blocks
+//   city?blocks=K&seed=S              densely occluded random city of K x K blocks
+//   forest?trees=T&levels=L&seed=S    instanced trees on periodic terrain tiles, 4x4 nested L times
+//   sphereflake?depth=D               Haines' sphereflake through nested instancing
+//   replicated?mesh=PATH&k=K&levels=L a mesh file on a k x k grid, nested L times
+// Every generator is deterministic (fixed default seed, no thread or rank dependence).
+// src/scene/README.md documents the parameters and the triangle counts.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "src/core/scene.hpp"
+
+namespace lzb {
+
+struct Generated {
+  uint32_t root = 0;                 // the node holding the generated scene
+  std::optional<CameraSpec> camera;  // the generator's default view of it (in root's frame)
+};
+
+// Adds the generator's nodes to `scene`. Relative file paths in parameters resolve against
+// baseDir. Throws InputError naming the generator or the key for an unknown name or key, or a bad
+// value.
+Generated addBuiltin(Scene& scene, const std::string& spec,
+                     const std::filesystem::path& baseDir = {});
+
+std::vector<std::string> builtinNames();
+
+}  // namespace lzb

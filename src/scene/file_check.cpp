@@ -1,0 +1,272 @@
+#include "src/scene/file_check.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cstdint>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "src/core/error.hpp"
+
+namespace lzb {
+
+namespace {
+
+std::string readAll(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  require(bool(in), path.string(), "cannot be opened");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return std::move(s).str();
+}
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return s;
+}
+
+// Whitespace-separated tokens of a memory buffer, without copying.
+class Tokens {
+ public:
+  Tokens(const std::string& text, size_t from) : s_(text), at_(from) {}
+  bool next(std::string_view& token) {
+    while (at_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[at_]))) ++at_;
+    if (at_ >= s_.size()) return false;
+    const size_t start = at_;
+    while (at_ < s_.size() && !std::isspace(static_cast<unsigned char>(s_[at_]))) ++at_;
+    token = std::string_view(s_).substr(start, at_ - start);
+    return true;
+  }
+
+ private:
+  const std::string& s_;
+  size_t at_;
+};
+
+// ---- PLY ----
+
+struct PlyProperty {
+  int size = 0;       // bytes of a scalar, or of a list item
+  int countSize = 0;  // > 0 for lists: bytes of the count
+};
+
+struct PlyElement {
+  std::string name;
+  uint64_t count = 0;
+  std::vector<PlyProperty> properties;
+};
+
+int plyTypeSize(const std::string& t) {
+  static const std::pair<const char*, int> kTypes[] = {
+      {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
+      {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
+      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
+  for (const auto& [name, size] : kTypes)
+    if (t == name) return size;
+  return 0;
+}
+
+uint64_t readUnsigned(const unsigned char* p, int size, bool bigEndian) {
+  uint64_t v = 0;
+  for (int i = 0; i < size; ++i) v |= uint64_t(p[bigEndian ? size - 1 - i : i]) << (8 * i);
+  return v;
+}
+
+void checkPly(const std::filesystem::path& path, const std::string& data) {
+  const std::string where = path.string();
+  // The header is text up to the line "end_header"; the data starts after that line.
+  const size_t endHeader = data.find("end_header");
+  require(endHeader != std::string::npos, where,
+          "PLY header has no end_header (truncated or malformed)");
+  const size_t eol = data.find('\n', endHeader);
+  const size_t dataStart = eol == std::string::npos ? data.size() : eol + 1;
+  std::istringstream header(data.substr(0, endHeader));
+  std::string line, format;
+  std::vector<PlyElement> elements;
+  while (std::getline(header, line)) {
+    std::istringstream words(line);
+    std::string word;
+    words >> word;
+    if (word == "format") {
+      words >> format;
+    } else if (word == "element") {
+      PlyElement e;
+      require(bool(words >> e.name >> e.count), where, "malformed PLY header line '" + line + "'");
+      elements.push_back(e);
+    } else if (word == "property") {
+      require(!elements.empty(), where, "PLY property before any element");
+      std::string type;
+      words >> type;
+      PlyProperty p;
+      if (type == "list") {
+        std::string countType, itemType;
+        words >> countType >> itemType;
+        p.countSize = plyTypeSize(countType);
+        p.size = plyTypeSize(itemType);
+        require(p.countSize > 0 && p.size > 0, where, "unknown PLY list type in '" + line + "'");
+      } else {
+        p.size = plyTypeSize(type);
+        require(p.size > 0, where, "unknown PLY property type in '" + line + "'");
+      }
+      elements.back().properties.push_back(p);
+    }
+  }
+  if (format == "ascii") {
+    // One token per scalar; a list is its count followed by that many items.
+    Tokens tokens(data, dataStart);
+    std::string_view t;
+    for (const PlyElement& e : elements)
+      for (uint64_t i = 0; i < e.count; ++i)
+        for (const PlyProperty& p : e.properties) {
+          require(tokens.next(t), where,
+                  "truncated: PLY data ends inside element '" + e.name + "' " + std::to_string(i) +
+                      " of " + std::to_string(e.count));
+          if (p.countSize == 0) continue;
+          uint64_t items = 0;
+          const auto r = std::from_chars(t.data(), t.data() + t.size(), items);
+          require(r.ec == std::errc() && r.ptr == t.data() + t.size(), where,
+                  "malformed PLY list count '" + std::string(t) + "' in element '" + e.name + "'");
+          for (uint64_t k = 0; k < items; ++k)
+            require(
+                tokens.next(t), where,
+                "truncated: PLY data ends inside element '" + e.name + "' " + std::to_string(i));
+        }
+    return;
+  }
+  require(format == "binary_little_endian" || format == "binary_big_endian", where,
+          "unknown PLY format '" + format + "'");
+  const bool big = format == "binary_big_endian";
+  const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
+  uint64_t at = dataStart;
+  const uint64_t end = data.size();
+  for (const PlyElement& e : elements) {
+    const bool fixed = std::none_of(e.properties.begin(), e.properties.end(),
+                                    [](const PlyProperty& p) { return p.countSize > 0; });
+    if (fixed) {
+      uint64_t stride = 0;
+      for (const PlyProperty& p : e.properties) stride += uint64_t(p.size);
+      require(stride == 0 || e.count <= (end - at) / stride, where,
+              "truncated: PLY binary data too short for " + std::to_string(e.count) + " '" +
+                  e.name + "' elements");
+      at += stride * e.count;
+      continue;
+    }
+    for (uint64_t i = 0; i < e.count; ++i)
+      for (const PlyProperty& p : e.properties) {
+        const auto need = [&](uint64_t n) {
+          require(n <= end - at, where,
+                  "truncated: PLY binary data ends inside element '" + e.name + "' " +
+                      std::to_string(i) + " of " + std::to_string(e.count));
+        };
+        if (p.countSize == 0) {
+          need(uint64_t(p.size));
+          at += uint64_t(p.size);
+          continue;
+        }
+        need(uint64_t(p.countSize));
+        const uint64_t items = readUnsigned(bytes + at, p.countSize, big);
+        at += uint64_t(p.countSize);
+        need(items * uint64_t(p.size));
+        at += items * uint64_t(p.size);
+      }
+  }
+}
+
+// ---- OFF ----
+
+void checkOff(const std::filesystem::path& path, const std::string& data) {
+  const std::string where = path.string();
+  std::istringstream in(data);
+  std::string line;
+  // Lines without comments and blanks, split into words.
+  const auto nextLine = [&](std::vector<std::string>& words) {
+    while (std::getline(in, line)) {
+      line = line.substr(0, line.find('#'));
+      std::istringstream s(line);
+      words.clear();
+      for (std::string w; s >> w;) words.push_back(w);
+      if (!words.empty()) return true;
+    }
+    return false;
+  };
+  std::vector<std::string> words;
+  require(nextLine(words), where, "empty OFF file");
+  // The header keyword may carry prefixes (COFF, NOFF, STOFF...) and the counts on the same line.
+  if (words[0].find("OFF") != std::string::npos) {
+    if (words.size() > 1 && lower(words[1]) == "binary") return;  // binary OFF: left to assimp
+    words.erase(words.begin());
+    if (words.empty()) require(nextLine(words), where, "truncated: OFF file has no counts line");
+  }
+  uint64_t counts[2] = {0, 0};
+  for (int i = 0; i < 2; ++i) {
+    require(size_t(i) < words.size(), where, "malformed OFF counts line");
+    const std::string& w = words[size_t(i)];
+    const auto r = std::from_chars(w.data(), w.data() + w.size(), counts[i]);
+    require(r.ec == std::errc() && r.ptr == w.data() + w.size(), where,
+            "malformed OFF counts line: '" + w + "' is not a count");
+  }
+  for (uint64_t v = 0; v < counts[0]; ++v)
+    require(nextLine(words), where,
+            "truncated: the header promises " + std::to_string(counts[0]) +
+                " vertices, the file has " + std::to_string(v));
+  for (uint64_t f = 0; f < counts[1]; ++f) {
+    require(nextLine(words), where,
+            "truncated: the header promises " + std::to_string(counts[1]) +
+                " faces, the file has " + std::to_string(f));
+    uint64_t k = 0;
+    const auto r = std::from_chars(words[0].data(), words[0].data() + words[0].size(), k);
+    require(r.ec == std::errc() && words.size() >= k + 1, where,
+            "malformed OFF face " + std::to_string(f) + ": '" + line + "'");
+  }
+}
+
+// ---- STL ----
+
+void checkStl(const std::filesystem::path& path, const std::string& data) {
+  const std::string where = path.string();
+  if (data.size() >= 84) {
+    const uint64_t n =
+        readUnsigned(reinterpret_cast<const unsigned char*>(data.data()) + 80, 4, false);
+    if (84 + 50 * n == data.size()) return;  // a complete binary STL
+  }
+  const size_t first = data.find_first_not_of(" \t\r\n");
+  const bool ascii = first != std::string::npos && lower(data.substr(first, 5)) == "solid" &&
+                     std::none_of(data.begin(), data.end(), [](char c) { return c == '\0'; });
+  if (ascii) {
+    // The last solid of a complete file closes near its end.
+    const std::string tail = lower(data.substr(data.size() - std::min<size_t>(data.size(), 4096)));
+    require(tail.find("endsolid") != std::string::npos, where,
+            "truncated: ASCII STL has no 'endsolid'");
+    return;
+  }
+  require(data.size() >= 84, where,
+          "truncated or malformed STL (" + std::to_string(data.size()) +
+              " bytes, shorter than a binary STL header)");
+  const uint64_t n =
+      readUnsigned(reinterpret_cast<const unsigned char*>(data.data()) + 80, 4, false);
+  throw InputError(where + ": truncated or malformed binary STL: header promises " +
+                   std::to_string(n) + " triangles (" + std::to_string(84 + 50 * n) +
+                   " bytes), file has " + std::to_string(data.size()) + " bytes");
+}
+
+}  // namespace
+
+void checkMeshFileComplete(const std::filesystem::path& path) {
+  const std::string ext = lower(path.extension().string());
+  if (ext != ".ply" && ext != ".off" && ext != ".stl") return;
+  const std::string data = readAll(path);
+  if (ext == ".ply") {
+    require(data.compare(0, 3, "ply") == 0, path.string(), "not a PLY file (no 'ply' magic)");
+    checkPly(path, data);
+  } else if (ext == ".off") {
+    checkOff(path, data);
+  } else {
+    checkStl(path, data);
+  }
+}
+
+}  // namespace lzb

@@ -1,0 +1,54 @@
+#include "src/scene/load.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <iostream>
+
+#include "src/core/error.hpp"
+#include "src/scene/builtin.hpp"
+#include "src/scene/mesh_file.hpp"
+#include "src/scene/toml_scene.hpp"
+
+namespace lzb {
+
+namespace {
+
+bool endsWithToml(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return s.size() >= 5 && s.compare(s.size() - 5, 5, ".toml") == 0;
+}
+
+}  // namespace
+
+Scene loadScene(const std::string& spec, bool quiet) {
+  require(!spec.empty(), "scene", "no scene given");
+  Scene scene;
+  const std::string prefix = "builtin:";
+  if (spec.rfind(prefix, 0) == 0) {
+    scene.source = spec;
+    const Generated g = addBuiltin(scene, spec.substr(prefix.size()));
+    scene.root = g.root;
+    scene.camera = g.camera;
+    scene.finalize();
+  } else if (endsWithToml(spec)) {
+    scene = loadTomlScene(spec);
+  } else {
+    scene.source = spec;
+    scene.root = addMeshFile(scene, spec);
+    scene.finalize();
+  }
+  // Expanded IDs must fit in 64 bits (finalize saturates instead of wrapping).
+  for (size_t i = 0; i < scene.nodes.size(); ++i)
+    require(scene.expandedCount[i] != ~uint64_t(0), spec,
+            "too large: node '" + scene.nodes[i].name + "' expands to more than 2^64 triangles");
+  require(scene.expandedTriangles() > 0, spec, "the scene has no triangles");
+  const LoadStats& s = scene.stats;
+  if (!quiet && (s.degenerate > 0 || s.nonFinite > 0))
+    std::cerr << "warning: " << spec << ": dropped " << s.degenerate << " degenerate and "
+              << s.nonFinite << " non-finite triangles (" << s.loaded << " kept)\n";
+  return scene;
+}
+
+}  // namespace lzb

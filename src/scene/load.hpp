@@ -1,0 +1,17 @@
+#pragma once
+// The one entry point for scene input.
+#include <string>
+
+#include "src/core/scene.hpp"
+
+namespace lzb {
+
+// Loads and finalizes the scene named by spec:
+//   "builtin:NAME?key=value&..."  a built-in generator (see builtin.hpp)
+//   "*.toml"                      a TOML scene file (see toml_scene.hpp, README.md)
+//   anything else                 a mesh file read through assimp (see mesh_file.hpp)
+// Throws InputError naming the file, line, generator or key on bad input. Unless quiet, prints a
+// warning to stderr when triangles were dropped (they are counted in Scene::stats either way).
+Scene loadScene(const std::string& spec, bool quiet = false);
+
+}  // namespace lzb

@@ -1,0 +1,421 @@
+#include "src/scene/toml_scene.hpp"
+
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <initializer_list>
+#include <map>
+#include <numbers>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "src/core/error.hpp"
+#include "src/scene/builtin.hpp"
+#include "src/scene/mesh_file.hpp"
+
+namespace lzb {
+
+namespace {
+
+constexpr int64_t kMaxImageSide = 16384;
+
+const char* typeName(toml::node_type t) {
+  switch (t) {
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a floating-point number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    default:
+      return "nothing";
+  }
+}
+
+std::string sub(const std::string& prefix, std::string_view key) {
+  return prefix.empty() ? std::string(key) : prefix + "." + std::string(key);
+}
+std::string item(const std::string& prefix, size_t i) {
+  return prefix + "[" + std::to_string(i) + "]";
+}
+
+class TomlSceneReader {
+ public:
+  explicit TomlSceneReader(const std::filesystem::path& path)
+      : path_(path), file_(path.string()), dir_(path.parent_path()) {}
+
+  Scene read();
+
+ private:
+  enum class Kind { kMesh, kGenerator, kNode };
+  struct Entry {
+    Kind kind;
+    uint32_t node;  // scene node
+    size_t index;   // position in its TOML array
+    std::optional<CameraSpec> camera;
+  };
+
+  [[noreturn]] void fail(const toml::node& at, const std::string& field,
+                         const std::string& what) const {
+    throw InputError(file_ + ":" + std::to_string(at.source().begin.line) + ": " + field + ": " +
+                     what);
+  }
+  const toml::node& need(const toml::table& t, std::string_view key,
+                         const std::string& prefix) const {
+    const toml::node* n = t.get(key);
+    if (!n) fail(t, sub(prefix, key), "missing required field");
+    return *n;
+  }
+  void allowOnly(const toml::table& t, std::initializer_list<std::string_view> keys,
+                 const std::string& prefix) const;
+  double number(const toml::node& n, const std::string& field) const;
+  int64_t integer(const toml::node& n, const std::string& field, int64_t lo, int64_t hi) const;
+  std::string text(const toml::node& n, const std::string& field) const;
+  const toml::table& table(const toml::node& n, const std::string& field) const;
+  const toml::array& array(const toml::node& n, const std::string& field) const;
+  glm::dvec3 vec3(const toml::node& n, const std::string& field) const;
+
+  void readImage(const toml::table& t);
+  CameraSpec readCamera(const toml::table& t, const std::string& field) const;
+  void readLight(const toml::table& t);
+  void readMeshes(const toml::array& a);
+  void readGenerators(const toml::array& a);
+  void readNodes(const toml::array& a);
+  glm::dmat4 readTransform(const toml::table& t, const std::string& field) const;
+  void addName(const toml::table& t, const std::string& prefix, Entry entry);
+  void checkCycles(const toml::array& nodes) const;
+
+  std::filesystem::path path_;
+  std::string file_;
+  std::filesystem::path dir_;
+  Scene scene_;
+  std::map<std::string, Entry, std::less<>> names_;
+};
+
+void TomlSceneReader::allowOnly(const toml::table& t, std::initializer_list<std::string_view> keys,
+                                const std::string& prefix) const {
+  for (const auto& [key, value] : t) {
+    bool known = false;
+    for (std::string_view k : keys) known = known || key.str() == k;
+    if (known) continue;
+    std::string list;
+    for (std::string_view k : keys) list += (list.empty() ? "" : ", ") + std::string(k);
+    throw InputError(file_ + ":" + std::to_string(key.source().begin.line) + ": " +
+                     sub(prefix, key.str()) + ": unknown field (expected one of: " + list + ")");
+  }
+}
+
+double TomlSceneReader::number(const toml::node& n, const std::string& field) const {
+  if (!n.is_number()) fail(n, field, std::string("must be a number, got ") + typeName(n.type()));
+  const double v = n.value<double>().value();
+  if (!std::isfinite(v)) fail(n, field, "must be finite");
+  return v;
+}
+
+int64_t TomlSceneReader::integer(const toml::node& n, const std::string& field, int64_t lo,
+                                 int64_t hi) const {
+  if (!n.is_integer()) fail(n, field, std::string("must be an integer, got ") + typeName(n.type()));
+  const int64_t v = n.value<int64_t>().value();
+  if (v < lo || v > hi)
+    fail(n, field,
+         "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
+             std::to_string(v));
+  return v;
+}
+
+std::string TomlSceneReader::text(const toml::node& n, const std::string& field) const {
+  if (!n.is_string()) fail(n, field, std::string("must be a string, got ") + typeName(n.type()));
+  const std::string v = n.value<std::string>().value();
+  if (v.empty()) fail(n, field, "must not be empty");
+  return v;
+}
+
+const toml::table& TomlSceneReader::table(const toml::node& n, const std::string& field) const {
+  if (!n.is_table()) fail(n, field, std::string("must be a table, got ") + typeName(n.type()));
+  return *n.as_table();
+}
+
+const toml::array& TomlSceneReader::array(const toml::node& n, const std::string& field) const {
+  if (!n.is_array()) fail(n, field, std::string("must be an array, got ") + typeName(n.type()));
+  return *n.as_array();
+}
+
+glm::dvec3 TomlSceneReader::vec3(const toml::node& n, const std::string& field) const {
+  const toml::array& a = array(n, field);
+  if (a.size() != 3) fail(n, field, "must have 3 numbers, got " + std::to_string(a.size()));
+  return {number(a[0], item(field, 0)), number(a[1], item(field, 1)), number(a[2], item(field, 2))};
+}
+
+void TomlSceneReader::readImage(const toml::table& t) {
+  allowOnly(t, {"width", "height"}, "image");
+  scene_.width = int(integer(need(t, "width", "image"), "image.width", 1, kMaxImageSide));
+  scene_.height = int(integer(need(t, "height", "image"), "image.height", 1, kMaxImageSide));
+}
+
+CameraSpec TomlSceneReader::readCamera(const toml::table& t, const std::string& field) const {
+  allowOnly(t, {"position", "look_at", "up", "fov", "near", "far"}, field);
+  CameraSpec c;
+  c.position = vec3(need(t, "position", field), sub(field, "position"));
+  c.lookAt = vec3(need(t, "look_at", field), sub(field, "look_at"));
+  if (c.lookAt == c.position) fail(t, sub(field, "look_at"), "must differ from position");
+  if (const toml::node* n = t.get("up")) {
+    c.up = vec3(*n, sub(field, "up"));
+    if (glm::length(glm::cross(c.up, c.lookAt - c.position)) <= 0.0)
+      fail(*n, sub(field, "up"), "must be non-zero and not parallel to the viewing direction");
+  }
+  if (const toml::node* n = t.get("fov")) {
+    c.fovyDegrees = number(*n, sub(field, "fov"));
+    if (!(c.fovyDegrees > 0.0 && c.fovyDegrees < 180.0))
+      fail(*n, sub(field, "fov"), "must be in (0, 180) degrees");
+  }
+  if (const toml::node* n = t.get("near")) {
+    c.nearPlane = number(*n, sub(field, "near"));
+    if (!(c.nearPlane > 0.0)) fail(*n, sub(field, "near"), "must be > 0");
+  }
+  if (const toml::node* n = t.get("far")) {
+    c.farPlane = number(*n, sub(field, "far"));
+    if (!(c.farPlane > c.nearPlane)) fail(*n, sub(field, "far"), "must be > near");
+  }
+  return c;
+}
+
+void TomlSceneReader::readLight(const toml::table& t) {
+  allowOnly(t, {"direction", "ambient"}, "light");
+  if (const toml::node* n = t.get("direction")) {
+    scene_.light.direction = vec3(*n, "light.direction");
+    if (!(glm::length(scene_.light.direction) > 0.0))
+      fail(*n, "light.direction", "must be non-zero");
+  }
+  if (const toml::node* n = t.get("ambient")) {
+    scene_.light.ambient = number(*n, "light.ambient");
+    if (scene_.light.ambient < 0.0 || scene_.light.ambient > 1.0)
+      fail(*n, "light.ambient", "must be in [0, 1]");
+  }
+}
+
+void TomlSceneReader::addName(const toml::table& t, const std::string& prefix, Entry entry) {
+  const toml::node& n = need(t, "name", prefix);
+  const std::string name = text(n, sub(prefix, "name"));
+  if (!names_.emplace(name, entry).second)
+    fail(n, sub(prefix, "name"),
+         "duplicate name '" + name + "' (meshes, generators and nodes share one namespace)");
+}
+
+void TomlSceneReader::readMeshes(const toml::array& a) {
+  for (size_t i = 0; i < a.size(); ++i) {
+    const std::string field = item("meshes", i);
+    const toml::table& t = table(a[i], field);
+    allowOnly(t, {"name", "file", "color"}, field);
+    const toml::node& fileNode = need(t, "file", field);
+    std::filesystem::path file(text(fileNode, sub(field, "file")));
+    if (file.is_relative()) file = dir_ / file;
+    std::optional<Rgba8> color;
+    if (const toml::node* n = t.get("color")) {
+      const glm::dvec3 c = vec3(*n, sub(field, "color"));
+      if (glm::any(glm::lessThan(c, glm::dvec3(0.0))) ||
+          glm::any(glm::greaterThan(c, glm::dvec3(1.0))))
+        fail(*n, sub(field, "color"), "components must be in [0, 1]");
+      color = packRgb(glm::vec3(c));
+    }
+    uint32_t node = 0;
+    try {
+      node = addMeshFile(scene_, file, color);
+    } catch (const InputError& e) {
+      fail(fileNode, sub(field, "file"), e.what());
+    }
+    addName(t, field, {Kind::kMesh, node, i, std::nullopt});
+  }
+}
+
+void TomlSceneReader::readGenerators(const toml::array& a) {
+  for (size_t i = 0; i < a.size(); ++i) {
+    const std::string field = item("generators", i);
+    const toml::table& t = table(a[i], field);
+    allowOnly(t, {"name", "spec"}, field);
+    const toml::node& specNode = need(t, "spec", field);
+    std::string spec = text(specNode, sub(field, "spec"));
+    if (spec.rfind("builtin:", 0) == 0) spec = spec.substr(8);
+    Generated g;
+    try {
+      g = addBuiltin(scene_, spec, dir_);
+    } catch (const InputError& e) {
+      fail(specNode, sub(field, "spec"), e.what());
+    }
+    addName(t, field, {Kind::kGenerator, g.root, i, g.camera});
+  }
+}
+
+glm::dmat4 TomlSceneReader::readTransform(const toml::table& t, const std::string& field) const {
+  if (const toml::node* n = t.get("matrix")) {
+    for (std::string_view other : {"translate", "rotate", "scale"})
+      if (t.get(other))
+        fail(*n, sub(field, "matrix"), "cannot be combined with " + std::string(other));
+    const std::string mf = sub(field, "matrix");
+    const toml::array& rows = array(*n, mf);
+    if (rows.size() != 4) fail(*n, mf, "must have 4 rows of 4 numbers");
+    glm::dmat4 m;
+    for (size_t r = 0; r < 4; ++r) {
+      const toml::array& row = array(rows[r], item(mf, r));
+      if (row.size() != 4) fail(rows[r], item(mf, r), "must have 4 numbers");
+      for (size_t c = 0; c < 4; ++c) m[int(c)][int(r)] = number(row[c], item(item(mf, r), c));
+    }
+    if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0 || m[3][3] != 1.0)
+      fail(rows[3], item(mf, 3), "must be [0, 0, 0, 1] (affine transforms only)");
+    if (!(std::abs(glm::determinant(glm::dmat3(m))) > 0.0)) fail(*n, mf, "is singular");
+    return m;
+  }
+  glm::dmat4 m(1.0);
+  if (const toml::node* n = t.get("translate"))
+    m = glm::translate(m, vec3(*n, sub(field, "translate")));
+  if (const toml::node* n = t.get("rotate")) {
+    const std::string rf = sub(field, "rotate");
+    const toml::table& r = table(*n, rf);
+    allowOnly(r, {"axis", "degrees", "euler"}, rf);
+    const double toRad = std::numbers::pi / 180.0;
+    if (const toml::node* e = r.get("euler")) {
+      if (r.get("axis") || r.get("degrees"))
+        fail(*e, sub(rf, "euler"), "cannot be combined with axis/degrees");
+      const glm::dvec3 a = vec3(*e, sub(rf, "euler")) * toRad;
+      // X first, then Y, then Z.
+      m = glm::rotate(m, a.z, glm::dvec3(0, 0, 1));
+      m = glm::rotate(m, a.y, glm::dvec3(0, 1, 0));
+      m = glm::rotate(m, a.x, glm::dvec3(1, 0, 0));
+    } else {
+      const glm::dvec3 axis = vec3(need(r, "axis", rf), sub(rf, "axis"));
+      if (!(glm::length(axis) > 0.0)) fail(*r.get("axis"), sub(rf, "axis"), "must be non-zero");
+      const double degrees = number(need(r, "degrees", rf), sub(rf, "degrees"));
+      m = glm::rotate(m, degrees * toRad, glm::normalize(axis));
+    }
+  }
+  if (const toml::node* n = t.get("scale")) {
+    const std::string sf = sub(field, "scale");
+    const glm::dvec3 s = n->is_number() ? glm::dvec3(number(*n, sf)) : vec3(*n, sf);
+    if (s.x == 0.0 || s.y == 0.0 || s.z == 0.0) fail(*n, sf, "must be non-zero");
+    m = glm::scale(m, s);
+  }
+  return m;
+}
+
+void TomlSceneReader::readNodes(const toml::array& a) {
+  // Names first, so nodes may reference nodes defined later in the file.
+  for (size_t i = 0; i < a.size(); ++i) {
+    const std::string field = item("nodes", i);
+    const toml::table& t = table(a[i], field);
+    allowOnly(t, {"name", "instances"}, field);
+    const toml::node& name = need(t, "name", field);
+    addName(t, field,
+            {Kind::kNode, scene_.addNode(text(name, sub(field, "name"))), i, std::nullopt});
+  }
+  for (size_t i = 0; i < a.size(); ++i) {
+    const std::string field = item("nodes", i);
+    const toml::table& t = *a[i].as_table();
+    const uint32_t node = names_.find(t["name"].value<std::string>().value())->second.node;
+    const std::string inf = sub(field, "instances");
+    const toml::array& list = array(need(t, "instances", field), inf);
+    for (size_t k = 0; k < list.size(); ++k) {
+      const std::string f = item(inf, k);
+      const toml::table& inst = table(list[k], f);
+      allowOnly(inst, {"node", "translate", "rotate", "scale", "matrix"}, f);
+      const toml::node& ref = need(inst, "node", f);
+      const std::string target = text(ref, sub(f, "node"));
+      const auto it = names_.find(target);
+      if (it == names_.end()) fail(ref, sub(f, "node"), "unknown node '" + target + "'");
+      scene_.nodes[node].instances.push_back({it->second.node, readTransform(inst, f)});
+    }
+  }
+  checkCycles(a);
+}
+
+void TomlSceneReader::checkCycles(const toml::array& nodes) const {
+  // Meshes and generators are leaves here (generators are acyclic by construction).
+  enum : uint8_t { kNew, kActive, kDone };
+  std::vector<uint8_t> state(nodes.size(), kNew);
+  std::vector<std::string> path;
+  const auto visit = [&](size_t i, auto&& self) -> void {
+    state[i] = kActive;
+    const toml::table& t = *nodes[i].as_table();
+    path.push_back(t["name"].value<std::string>().value());
+    const toml::array& list = *t["instances"].as_array();
+    for (size_t k = 0; k < list.size(); ++k) {
+      const toml::node& ref = *list[k].as_table()->get("node");
+      const Entry& e = names_.find(ref.value<std::string>().value())->second;
+      if (e.kind != Kind::kNode || state[e.index] == kDone) continue;
+      if (state[e.index] == kActive) {
+        std::string cycle;
+        bool on = false;
+        for (const std::string& p : path) {
+          on = on || p == ref.value<std::string>().value();
+          if (on) cycle += p + " -> ";
+        }
+        fail(ref, item("nodes[" + std::to_string(i) + "].instances", k) + ".node",
+             "instancing cycle: " + cycle + ref.value<std::string>().value());
+      }
+      self(e.index, self);
+    }
+    path.pop_back();
+    state[i] = kDone;
+  };
+  for (size_t i = 0; i < nodes.size(); ++i)
+    if (state[i] == kNew) visit(i, visit);
+}
+
+Scene TomlSceneReader::read() {
+  toml::table doc;
+  try {
+    doc = toml::parse_file(path_.string());
+  } catch (const toml::parse_error& e) {
+    throw InputError(file_ + ":" + std::to_string(e.source().begin.line) + ":" +
+                     std::to_string(e.source().begin.column) +
+                     ": parse error: " + std::string(e.description()));
+  }
+  scene_.source = file_;
+  allowOnly(doc, {"root", "image", "camera", "keyframes", "light", "meshes", "generators", "nodes"},
+            "");
+  if (const toml::node* n = doc.get("image")) readImage(table(*n, "image"));
+  if (const toml::node* n = doc.get("camera"))
+    scene_.camera = readCamera(table(*n, "camera"), "camera");
+  if (const toml::node* n = doc.get("keyframes")) {
+    const toml::array& a = array(*n, "keyframes");
+    for (size_t i = 0; i < a.size(); ++i)
+      scene_.keyframes.push_back(
+          readCamera(table(a[i], item("keyframes", i)), item("keyframes", i)));
+  }
+  if (const toml::node* n = doc.get("light")) readLight(table(*n, "light"));
+  if (const toml::node* n = doc.get("meshes")) readMeshes(array(*n, "meshes"));
+  if (const toml::node* n = doc.get("generators")) readGenerators(array(*n, "generators"));
+  if (const toml::node* n = doc.get("nodes")) readNodes(array(*n, "nodes"));
+
+  const toml::node& rootNode = need(doc, "root", "");
+  const std::string root = text(rootNode, "root");
+  const auto it = names_.find(root);
+  if (it == names_.end()) fail(rootNode, "root", "unknown node '" + root + "'");
+  scene_.root = it->second.node;
+  // A generator used as the whole scene brings its default view unless the file sets one.
+  if (!scene_.camera && it->second.camera) scene_.camera = it->second.camera;
+  scene_.finalize();
+  return std::move(scene_);
+}
+
+}  // namespace
+
+Scene loadTomlScene(const std::filesystem::path& path) {
+  std::error_code ec;
+  require(std::filesystem::is_regular_file(path, ec), path.string(), "file not found");
+  return TomlSceneReader(path).read();
+}
+
+}  // namespace lzb
