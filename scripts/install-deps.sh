@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Installs the Debian 12 packages lzb builds, tests and benchmarks with; idempotent, quiet when all present.
+# Installs the Debian 12 packages lzb builds and runs with; idempotent, quiet when all are present.
+# --test adds what the tests fetch their real meshes from (libcgal-demo, assimp-testmodels);
+# --bench adds gnuplot for the benchmark plots.
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
@@ -8,6 +10,13 @@ packages=(
   libassimp-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev librandom123-dev
   libgtest-dev
 )
+for arg in "$@"; do
+  case "$arg" in
+    --test) packages+=(libcgal-demo assimp-testmodels) ;;
+    --bench) packages+=(gnuplot-nox libcgal-demo) ;;
+    *) echo "install-deps: unknown option $arg" >&2; exit 2 ;;
+  esac
+done
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "src/image/metrics.hpp"
+#include "src/image/compare.hpp"
 
 namespace lzb {
 

@@ -33,9 +33,10 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
   c.add_option("--threads,-t", a.threads, "threads per rank (0: the cores this rank owns)")
       ->capture_default_str();
   c.add_option("--seed", a.seed, "seed of all randomness (runs repeat exactly)")->capture_default_str();
-  c.add_option("--width", a.width, "image width (0: the scene file's, else 640)")->capture_default_str();
-  c.add_option("--height", a.height, "image height (0: the scene file's, else 480)")
-      ->capture_default_str();
+  c.add_option("--width", a.width, "image width (default: the scene file's, else 640)")
+      ->check(CLI::Range(1, 16384));
+  c.add_option("--height", a.height, "image height (default: the scene file's, else 480)")
+      ->check(CLI::Range(1, 16384));
   c.add_option("--frames", a.frames,
                "frames along the camera path (scene keyframes, else a circle around the centre)")
       ->capture_default_str();
@@ -55,7 +56,6 @@ void validate(const RenderArgs& a) {
   if (!a.reference.empty()) checkMethodName(a.reference, "--reference");
   require(a.threads >= 0 && a.threads <= 1024, "--threads", "must be in [0, 1024]");
   require(a.frames >= 1 && a.frames <= 1000000, "--frames", "must be in [1, 1000000]");
-  require(a.width >= 0 && a.height >= 0, "--width/--height", "must not be negative");
   require(a.fov >= 0.0 && a.fov < 180.0, "--fov", "must be in (0, 180) degrees");
   require(a.nearPlane >= 0.0, "--near", "must be > 0");
   require(a.farPlane >= 0.0, "--far", "must be > 0");

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Install what is missing, build, fetch the real test meshes, and run every test with ctest.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh --test
+bash scripts/build.sh
+bash scripts/fetch-test-meshes.sh build/data
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+cd build && ctest --output-on-failure -j 2 "$@"

@@ -1,0 +1,97 @@
+#include "src/cli/info_command.hpp"
+
+#include <cstdio>
+
+#include "src/cli/report.hpp"
+#include "src/core/error.hpp"
+#include "src/core/system.hpp"
+#include "src/core/timer.hpp"
+#include "src/octree/octree.hpp"
+#include "src/scene/load.hpp"
+
+namespace lzb {
+
+void addInfoOptions(CLI::App& c, InfoArgs& a) {
+  c.add_option("scene", a.scene, "mesh file, scene.toml, or builtin:NAME?key=value")->required();
+  c.add_option("--max-depth", a.maxDepth, "octree maximum depth")->capture_default_str();
+  c.add_option("--leaf-size", a.leafSize, "octree maximum entries per leaf")->capture_default_str();
+  c.add_flag("--json", a.json, "print JSON instead of text");
+  c.add_flag("--quiet,-q", a.quiet, "no progress lines");
+}
+
+namespace {
+
+// Bytes the scene model holds: per triangle 3 positions, a normal and a colour; per instance a
+// transform and an offset.
+uint64_t sceneBytes(const Scene& scene) {
+  uint64_t bytes = 0;
+  for (const Node& n : scene.nodes)
+    bytes += n.mesh.positions.size() * sizeof(glm::vec3) + n.mesh.normals.size() * sizeof(glm::vec3) +
+             n.mesh.colors.size() * sizeof(Rgba8) + n.instances.size() * (sizeof(Instance) + 8);
+  return bytes;
+}
+
+}  // namespace
+
+int runInfo(const InfoArgs& a, const mpi::Group& g) {
+  require(a.maxDepth >= 0 && a.maxDepth <= 32, "--max-depth", "must be in [0, 32]");
+  require(a.leafSize >= 1, "--leaf-size", "must be >= 1");
+  const bool talk = g.root() && !a.quiet;
+  Stopwatch clock;
+  const Scene scene = loadScene(a.scene, !talk);
+  const double loadSeconds = clock.lap();
+
+  OctreeParams params;
+  params.maxDepth = a.maxDepth;
+  params.maxLeafEntries = uint32_t(a.leafSize);
+  params.progress = talk;
+  // One octree per node that holds triangles or instances: what the methods build.
+  nlohmann::json octrees = nlohmann::json::array();
+  uint64_t octreeBytes = 0;
+  for (uint32_t i = 0; i < scene.nodes.size(); ++i) {
+    const Node& node = scene.nodes[i];
+    if (node.mesh.empty() && node.instances.empty()) continue;
+    const Octree tree(scene, i, params);
+    nlohmann::json s = tree.stats().toJson();
+    s["node"] = node.name;
+    s["triangles"] = node.mesh.size();
+    s["instances"] = node.instances.size();
+    octreeBytes += tree.stats().memoryBytes;
+    octrees.push_back(std::move(s));
+  }
+  const double octreeSeconds = clock.lap();
+
+  nlohmann::json info = sceneSummary(scene);
+  info["instances"] = 0;
+  for (const Node& n : scene.nodes) info["instances"] = info["instances"].get<uint64_t>() + n.instances.size();
+  info["octrees"] = octrees;
+  info["memory"] = {{"scene_bytes", sceneBytes(scene)},
+                    {"octree_bytes", octreeBytes},
+                    {"peak_resident_bytes", peakMemoryBytes()}};
+  info["seconds"] = {{"load", loadSeconds}, {"octrees", octreeSeconds}};
+  if (!g.root()) return 0;
+  if (a.json) {
+    std::printf("%s\n", info.dump(2).c_str());
+    return 0;
+  }
+  const auto& b = scene.bounds();
+  std::printf("scene:      %s\n", scene.source.c_str());
+  std::printf("triangles:  %llu unique, %llu expanded (%llu nodes, %llu instances)\n",
+              (unsigned long long)scene.uniqueTriangles(), (unsigned long long)scene.expandedTriangles(),
+              (unsigned long long)scene.nodes.size(), (unsigned long long)info["instances"].get<uint64_t>());
+  std::printf("dropped:    %llu degenerate, %llu non-finite\n", (unsigned long long)scene.stats.degenerate,
+              (unsigned long long)scene.stats.nonFinite);
+  std::printf("bounds:     [%g, %g, %g] - [%g, %g, %g]\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);
+  for (const auto& o : octrees)
+    std::printf("octree %-12s %llu nodes, %llu leaves, depth %d, %.1f mean / %llu max entries per leaf, "
+                "%.1f MB, %.2f s\n",
+                o["node"].get<std::string>().c_str(), (unsigned long long)o["nodes"].get<uint64_t>(),
+                (unsigned long long)o["leaves"].get<uint64_t>(), o["max_depth"].get<int>(),
+                o["mean_leaf_entries"].get<double>(), (unsigned long long)o["max_leaf_entries"].get<uint64_t>(),
+                o["memory_bytes"].get<double>() / 1e6, o["build_seconds"].get<double>());
+  std::printf("memory:     scene %.1f MB, octrees %.1f MB, peak resident %.1f MB\n",
+              double(sceneBytes(scene)) / 1e6, double(octreeBytes) / 1e6, double(peakMemoryBytes()) / 1e6);
+  return 0;
+}
+
+}  // namespace lzb

@@ -1,0 +1,37 @@
+#include "tests/cli_runner.hpp"
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+
+namespace lzb::test {
+
+RunResult runLzb(const std::string& args) {
+  RunResult r;
+  const std::string cmd = std::string(LZB_BINARY) + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf;
+  while (size_t n = fread(buf.data(), 1, buf.size(), pipe)) r.output.append(buf.data(), n);
+  const int raw = pclose(pipe);
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return r;
+}
+
+std::filesystem::path freshDir(const std::string& name) {
+  const std::filesystem::path dir = std::filesystem::path(LZB_WORK_DIR) / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+nlohmann::json readJson(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  return nlohmann::json::parse(in);
+}
+
+std::filesystem::path dataDir() { return LZB_DATA_DIR; }
+
+}  // namespace lzb::test
