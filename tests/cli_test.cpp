@@ -104,6 +104,17 @@ TEST(Compare, PrintsMetricsOfTwoImages) {
   EXPECT_GT(nlohmann::json::parse(diff.output)["correct_pixel_rate"].get<double>(), 0.99);
 }
 
+TEST(Info, CountsInstancedTrianglesAndBuildsOctrees) {
+  const RunResult r = runLzb("info 'builtin:chessboard?n=1048576' --json --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json info = nlohmann::json::parse(r.output);
+  EXPECT_GE(info["triangles_expanded"].get<double>(), 1e12);
+  EXPECT_LT(info["triangles_unique"].get<double>(), 1e5);
+  ASSERT_FALSE(info["octrees"].empty());
+  EXPECT_GT(info["octrees"][0]["leaves"].get<double>(), 0.0);
+  EXPECT_GT(info["memory"]["scene_bytes"].get<double>(), 0.0);
+}
+
 // Bad input: a clear message naming what is wrong, exit status 2, and no output written.
 struct BadCase {
   std::string name, args, mustMention;

@@ -1,5 +1,6 @@
 #include "src/cli/info_command.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "src/cli/report.hpp"
@@ -82,13 +83,19 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   std::printf("dropped:    %llu degenerate, %llu non-finite\n", (unsigned long long)scene.stats.degenerate,
               (unsigned long long)scene.stats.nonFinite);
   std::printf("bounds:     [%g, %g, %g] - [%g, %g, %g]\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);
-  for (const auto& o : octrees)
+  // A line per octree for the first few; the rest only in the JSON and the memory total.
+  constexpr size_t kListed = 6;
+  for (size_t i = 0; i < std::min(octrees.size(), kListed); ++i) {
+    const auto& o = octrees[i];
     std::printf("octree %-12s %llu nodes, %llu leaves, depth %d, %.1f mean / %llu max entries per leaf, "
                 "%.1f MB, %.2f s\n",
                 o["node"].get<std::string>().c_str(), (unsigned long long)o["nodes"].get<uint64_t>(),
                 (unsigned long long)o["leaves"].get<uint64_t>(), o["max_depth"].get<int>(),
                 o["mean_leaf_entries"].get<double>(), (unsigned long long)o["max_leaf_entries"].get<uint64_t>(),
                 o["memory_bytes"].get<double>() / 1e6, o["build_seconds"].get<double>());
+  }
+  if (octrees.size() > kListed)
+    std::printf("  ... and %zu more octrees (--json lists them all)\n", octrees.size() - kListed);
   std::printf("memory:     scene %.1f MB, octrees %.1f MB, peak resident %.1f MB\n",
               double(sceneBytes(scene)) / 1e6, double(octreeBytes) / 1e6, double(peakMemoryBytes()) / 1e6);
   return 0;
