@@ -1,0 +1,76 @@
+#pragma once
+// Internal to EmbreeScene: one RTCScene per lzb node, and instancing of any depth on an Embree
+// built with RTC_MAX_INSTANCE_LEVEL_COUNT == 1 (Debian's).
+//
+// A Level is the RTCScene of one lzb node, in the node's frame shifted by the centre of the
+// node's bounds (so float coordinates stay small): the node's own triangles are attached
+// directly, and its instances are the primitives of one user geometry. A primitive's intersect
+// callback moves the ray into the child's frame and calls rtcIntersect on the child's Level with
+// a fresh context, so Embree never sees more than one level at a time and the nesting depth is
+// unbounded. Memory grows with the unique scene: one Level per node, one primitive per Instance.
+//
+// Precision: the context carries each ray in double next to Embree's float copy, and the
+// callback maps the double ray with the double transform; a ray becomes float only in the frame
+// of the Level being traversed, where coordinates are relative to that node's centre. So a
+// scene far from the origin, or a wide one seen close up, traces as precisely as a small one at
+// the origin, with no per-camera rebuild.
+//
+// Expanded IDs: a hit on the node's own triangles is its primID; a hit on an instance is
+// Scene::childOffset plus the ID found below, which the callback leaves in IdContext::ids.
+#include <cstdint>
+#include <vector>
+
+#include <embree3/rtcore.h>
+#include <glm/glm.hpp>
+
+namespace lzb::embree {
+
+constexpr uint64_t kMiss = ~uint64_t(0);
+
+struct Level;
+
+// One lzb Instance as a user-geometry primitive.
+struct UserChild {
+  const Level* child = nullptr;
+  glm::dmat4x3 toChild{1.0};  // parent Level frame -> child Level frame
+  float lower[3], upper[3];   // the child's bounds in the parent Level frame, padded outwards
+  uint64_t offset = 0;        // Scene::childOffset of this instance
+};
+
+struct Level {
+  RTCScene scene = nullptr;
+  unsigned meshGeom = RTC_INVALID_GEOMETRY_ID;  // the node's own triangles
+  unsigned userGeom = RTC_INVALID_GEOMETRY_ID;  // one primitive per entry of userChildren
+  std::vector<UserChild> userChildren;
+};
+
+// A ray in double in some Level's frame.
+struct DoubleRay {
+  glm::dvec3 org, dir;
+};
+
+// The context of every rtcIntersect call on a Level; Embree hands it to the callbacks, which
+// find a lane's entries through RTCRay::id.
+struct IdContext {
+  RTCIntersectContext ctx;  // first member: Embree sees a plain RTCIntersectContext
+  const DoubleRay* rays;    // per ray id: the ray in the Level's frame
+  uint64_t* ids;            // per ray id: the ID below the latest accepted instance hit
+};
+
+// The expanded ID (relative to the Level's node) of a hit, or kMiss.
+inline uint64_t decode(const Level& level, unsigned geomID, unsigned primID, uint64_t userId) {
+  if (geomID == RTC_INVALID_GEOMETRY_ID) return kMiss;
+  return geomID == level.meshGeom ? primID : userId;
+}
+
+// Creates the user geometry of level.userChildren (when there are any) and attaches it.
+void attachUserChildren(RTCDevice device, Level& level);
+
+// Fills an RTCRayHit for `ray` (float copy of the double ray) with id 0 and a reset hit.
+void setRayHit(RTCRayHit& rh, const DoubleRay& ray, float tnear, float tfar);
+
+// Traces one ray through `level` (rh from setRayHit, ray its double version); returns the
+// expanded ID relative to the level's node, or kMiss; rh.ray.tfar is the hit distance.
+uint64_t intersect1(const Level& level, RTCRayHit& rh, const DoubleRay& ray);
+
+}  // namespace lzb::embree

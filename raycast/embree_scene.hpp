@@ -1,0 +1,75 @@
+#pragma once
+// An Embree 3 view of a lzb::Scene for exact ray casting, built once and reused by every pass
+// that casts rays (the raycast reference, coarse rays for the partition plane, far-scene rays).
+//
+// Instancing of any depth without flattening: one Embree scene per lzb node (see
+// embree_level.hpp), so memory follows the unique scene even for 10^12 expanded triangles.
+//
+// Precision: each node's Embree scene lives in the node's frame shifted by the centre of its
+// bounds (shift computed in double), and rays are carried in double through the instance levels
+// (double transforms); a ray is rounded to float only in the frame of the node whose BVH it is
+// traversing. A scene placed 1e7 from the origin, or a wide one seen close up, traces as
+// precisely as a small one at the origin, and no camera change rebuilds anything.
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "src/core/scene.hpp"
+
+namespace lzb {
+
+struct Ray {
+  glm::dvec3 origin{0.0};
+  glm::dvec3 dir{0.0, 0.0, -1.0};
+  double tnear = 0.0;
+  double tfar = std::numeric_limits<double>::infinity();
+};
+
+struct RayHit {
+  float t = std::numeric_limits<float>::infinity();  // origin + t * dir is the hit point
+  uint64_t id = kNoId;                               // expanded triangle ID
+  bool hit() const { return id != kNoId; }
+};
+
+struct EmbreeSceneOptions {
+  int threads = 1;          // Embree's build threads
+  bool highQuality = true;  // RTC_BUILD_QUALITY_HIGH (spatial splits) for the node BVHs
+};
+
+struct EmbreeBuildStats {
+  double seconds = 0.0;
+  uint64_t levels = 0;            // Embree scenes: one per node reached
+  uint64_t triangles = 0;         // triangles given to Embree (each unique triangle once)
+  uint64_t instances = 0;         // lzb instances, each one user-geometry primitive
+  uint64_t skippedInstances = 0;  // singular or non-finite transforms (nothing to hit)
+};
+
+class EmbreeScene {
+ public:
+  // Builds every node's BVH; the scene must be finalized and outlive this object.
+  EmbreeScene(const Scene& scene, const EmbreeSceneOptions& options);
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  // The nearest hit with tnear <= t <= tfar (bounds rounded outwards to float). Thread-safe.
+  RayHit intersect(const glm::dvec3& origin, const glm::dvec3& dir, double tnear,
+                   double tfar) const;
+  // Many rays at once (hits.size() == rays.size()), as packets of packetWidth() consecutive
+  // rays through Embree's packet traversal (down through every instance level): order rays so
+  // that packets are coherent (one camera, 4x4 pixel blocks). Same hits as one at a time.
+  // Thread-safe.
+  void intersect(std::span<const Ray> rays, std::span<RayHit> hits) const;
+  int packetWidth() const;  // 16, 8, 4 (what the CPU runs natively) or 1
+
+  const EmbreeBuildStats& buildStats() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace lzb
