@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """zbuffer vs raycast frame time on the city and on the chessboard series n = 2^k.
 
-Usage: python3 runs/exact/run.py [--quick]   (from the repository root, after scripts/build.sh)
+Usage: python3 runs/exact/run.py [--quick] [--plot-only]   (from the repository root, after scripts/build.sh)
 Writes runs/exact/results.csv, runs/exact/frame_time.png and prints the llvmpipe triangle rate.
 Each configuration renders FRAMES frames along the default camera path in one process; the
 median frame time is reported. Methods alternate per scene so machine drift hits both alike.
@@ -46,21 +46,34 @@ def render(scene, method):
         row["rays_per_s"] = rays / trace_s if trace_s > 0 else ""
     return row
 
-rows = []
-for name, scene in scenes:
+def read_rows():
+    with open(os.path.join(HERE, "results.csv")) as f:
+        lines = [l for l in f if not l.startswith("#")]
+    out = []
+    for r in csv.DictReader(lines):
+        r["triangles"] = int(r["triangles"])
+        r["median_frame_s"] = float(r["median_frame_s"])
+        for k in ("triangles_per_s", "rays_per_s"):
+            r[k] = float(r[k]) if r[k] else ""
+        out.append(r)
+    return out
+
+rows = read_rows() if "--plot-only" in sys.argv else []
+for name, scene in ([] if rows else scenes):
     for method in ("zbuffer", "raycast"):
         r = render(scene, method)
         r["name"] = name
         rows.append(r)
         print(f"{name:18s} {method:8s} {r['triangles']:>16,} tris  {r['median_frame_s']*1000:9.1f} ms", flush=True)
-for name, scene in raycast_only:
+for name, scene in ([] if "--plot-only" in sys.argv else raycast_only):
     r = render(scene, "raycast")
     r["name"] = name
     rows.append(r)
     print(f"{name:18s} raycast  {r['triangles']:>16,} tris  {r['median_frame_s']*1000:9.1f} ms", flush=True)
 
-fields = ["name", "scene", "method", "triangles", "median_frame_s", "setup_s", "triangles_per_s", "rays_per_s"]
-with open(os.path.join(HERE, "results.csv"), "w", newline="") as f:
+if "--plot-only" not in sys.argv:
+  fields = ["name", "scene", "method", "triangles", "median_frame_s", "setup_s", "triangles_per_s", "rays_per_s"]
+  with open(os.path.join(HERE, "results.csv"), "w", newline="") as f:
     f.write(f"# command: python3 runs/exact/run.py{' --quick' if quick else ''}; {FRAMES} frames, {THREADS} threads, 640x480\n")
     w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
     w.writeheader()
@@ -77,7 +90,7 @@ if rays:
 # Plot: frame time against expanded triangle count, chessboard series, both methods.
 with tempfile.NamedTemporaryFile("w", suffix=".dat", delete=False) as d:
     for method in ("zbuffer", "raycast"):
-        d.write(f'"{method}"\n')
+        d.write(f"# {method}\n")
         for r in rows:
             if r["method"] == method and r["name"].startswith("chessboard"):
                 d.write(f"{r['triangles']} {r['median_frame_s']}\n")

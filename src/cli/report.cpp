@@ -113,9 +113,10 @@ void Report::printSummary(std::FILE* out) const {
     std::fprintf(out, "  accuracy vs %s: correct-pixel rate >= %.5f\n",
                  json_["parameters"]["reference"].get<std::string>().c_str(),
                  s["min_correct_pixel_rate"].get<double>());
-  std::fprintf(out, "  images: %s/frame_%04d.png (.exr)%s\n", out_.c_str(), 0,
+  const std::string dir = std::filesystem::absolute(out_).string();
+  std::fprintf(out, "  images: %s/frame_%04d.png (.exr)%s\n", dir.c_str(), 0,
                frames > 1 ? " ..." : "");
-  std::fprintf(out, "  report: %s/report.json\n", out_.c_str());
+  std::fprintf(out, "  report: %s/report.json\n", dir.c_str());
 }
 
 }  // namespace lzb
