@@ -3,27 +3,48 @@
 #include "raycast/raycast_renderer.hpp"
 #include "src/core/error.hpp"
 #include "src/zbuffer/zbuffer_renderer.hpp"
+// Method plugins of later issues include their header here.
 
 namespace lzb {
 
-const std::vector<std::string>& methodNames() {
-  static const std::vector<std::string> names = {"zbuffer", "raycast"};
-  return names;
+namespace {
+
+template <typename R>
+MethodPlugin exactMethod(std::string name, std::string summary) {
+  return MethodPlugin{std::move(name),
+                      std::move(summary),
+                      [](CLI::App&) {},
+                      [] {},
+                      [] { return nlohmann::json::object(); },
+                      [](const Scene& scene, const RenderOptions& options) -> std::unique_ptr<Renderer> {
+                        return std::make_unique<R>(scene, options);
+                      }};
 }
 
-void checkMethodName(const std::string& method, const std::string& field) {
-  for (const std::string& n : methodNames())
-    if (n == method) return;
-  std::string known;
-  for (const std::string& n : methodNames()) known += (known.empty() ? "" : ", ") + n;
-  throw InputError(field + ": unknown method '" + method + "' (known: " + known + ")");
+}  // namespace
+
+const std::vector<MethodPlugin>& methods() {
+  static const std::vector<MethodPlugin> all = {
+      exactMethod<ZBufferRenderer>("zbuffer", "exact: conventional z-buffer through OSMesa"),
+      exactMethod<RaycastRenderer>("raycast", "exact: Embree primary rays"),
+      // Method plugins of later issues: one line each below this comment.
+  };
+  return all;
 }
+
+const MethodPlugin& methodNamed(const std::string& name, const std::string& field) {
+  for (const MethodPlugin& m : methods())
+    if (m.name == name) return m;
+  std::string known;
+  for (const MethodPlugin& m : methods()) known += (known.empty() ? "" : ", ") + m.name;
+  throw InputError(field + ": unknown method '" + name + "' (known: " + known + ")");
+}
+
+void checkMethodName(const std::string& method, const std::string& field) { methodNamed(method, field); }
 
 std::unique_ptr<Renderer> createRenderer(const std::string& method, const Scene& scene,
                                          const RenderOptions& options) {
-  checkMethodName(method, "--method");
-  if (method == "raycast") return std::make_unique<RaycastRenderer>(scene, options);
-  return std::make_unique<ZBufferRenderer>(scene, options);
+  return methodNamed(method, "--method").create(scene, options);
 }
 
 }  // namespace lzb

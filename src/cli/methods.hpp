@@ -4,11 +4,13 @@
 #include <string>
 #include <vector>
 
+#include "src/cli/method_plugin.hpp"
 #include "src/core/renderer.hpp"
 
 namespace lzb {
 
-const std::vector<std::string>& methodNames();
+const std::vector<MethodPlugin>& methods();
+const MethodPlugin& methodNamed(const std::string& name, const std::string& field);
 // Throws InputError naming `field` when `method` is not a known method.
 void checkMethodName(const std::string& method, const std::string& field);
 // Throws InputError naming --method for an unknown name.

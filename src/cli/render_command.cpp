@@ -25,7 +25,9 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
   c.add_option("scene", a.scene,
                "mesh file (OBJ, PLY, OFF, STL, glTF, ...), scene.toml, or builtin:NAME?key=value")
       ->required();
-  c.add_option("--method,-m", a.method, "rendering method: zbuffer | raycast")->capture_default_str();
+  std::string names;
+  for (const MethodPlugin& m : methods()) names += (names.empty() ? "" : " | ") + m.name;
+  c.add_option("--method,-m", a.method, "rendering method: " + names)->capture_default_str();
   c.add_option("--reference", a.reference,
                "also render this exact method and report accuracy against it: zbuffer | raycast");
   c.add_option("--out,-o", a.out, "output folder for frame_NNNN.png/.exr and report.json")
@@ -47,12 +49,13 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
   c.add_option("--far", a.farPlane, "far plane distance (0: the scene's, else from the bounds)")
       ->capture_default_str();
   c.add_flag("--quiet,-q", a.quiet, "no progress lines");
+  for (const MethodPlugin& m : methods()) m.addOptions(c);
 }
 
 namespace {
 
 void validate(const RenderArgs& a) {
-  checkMethodName(a.method, "--method");
+  methodNamed(a.method, "--method").validate();
   if (!a.reference.empty()) checkMethodName(a.reference, "--reference");
   require(a.threads >= 0 && a.threads <= 1024, "--threads", "must be in [0, 1024]");
   require(a.frames >= 1 && a.frames <= 1000000, "--frames", "must be in [1, 1000000]");

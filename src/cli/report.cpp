@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "src/cli/methods.hpp"
 #include "src/core/atomic_file.hpp"
 #include "src/core/system.hpp"
 
@@ -45,6 +46,7 @@ Report::Report(const RenderArgs& a, const RenderOptions& options, const mpi::Gro
              {"fov", a.fov},
              {"near", a.nearPlane},
              {"far", a.farPlane}}},
+           {"method_parameters", methodNamed(a.method, "--method").parameters()},
            {"ranks", g.size},
            {"threads", options.threads},
            {"frames", nlohmann::json::array()}};
