@@ -67,6 +67,8 @@ void Report::addFrame(int frame, const Camera& camera, nlohmann::json entry, con
   json_["height"] = camera.height();
   entry["frame"] = frame;
   entry["covered_pixels"] = image.coveredCount();
+  entry["triangles"] = {{"unique", json_["scene"]["triangles_unique"]},
+                        {"expanded", json_["scene"]["triangles_expanded"]}};
   entry["camera"] = {{"position", vec(camera.position())},
                      {"look_at", vec(camera.spec().lookAt)},
                      {"fov", camera.fovyDegrees()},
