@@ -21,7 +21,8 @@ namespace lzb::gl {
   X(AttachShader) X(LinkProgram) X(GetProgramiv) X(GetProgramInfoLog) X(DeleteProgram)          \
   X(UseProgram) X(GetUniformLocation) X(UniformMatrix4fv) X(Uniform2ui) X(Uniform1f)           \
   X(GenVertexArrays) X(DeleteVertexArrays) X(BindVertexArray) X(GenBuffers) X(DeleteBuffers)    \
-  X(BindBuffer) X(BufferData) X(EnableVertexAttribArray) X(VertexAttribPointer) X(DrawArrays)
+  X(BindBuffer) X(BufferData) X(EnableVertexAttribArray) X(VertexAttribPointer) X(DrawArrays)     \
+  X(DrawElements)
 // clang-format on
 
 struct Api {

@@ -14,19 +14,30 @@ constexpr const char* kVertexShader = R"(#version 450 core
 layout(location = 0) in vec3 position;
 uniform mat4 modelView;   // node frame -> camera frame, composed in double (camera-relative)
 uniform mat4 projection;  // reversed-Z; w_clip is the view depth
-void main() { gl_Position = projection * (modelView * vec4(position, 1.0)); }
+// Vertices are unindexed (3 per triangle), and gl_VertexID is the vertex's index in the buffer for
+// both glDrawArrays and glDrawElements, so this is the triangle's index in the bound buffer.
+flat out uint triangle;
+void main() {
+  triangle = uint(gl_VertexID) / 3u;
+  gl_Position = projection * (modelView * vec4(position, 1.0));
+}
 )";
 
 constexpr const char* kFragmentShader = R"(#version 450 core
-uniform uvec2 idBase;      // expanded ID of the draw's first triangle as (low, high) words
+uniform uvec2 idBase;      // expanded ID of the bound buffer's triangle 0 as (low, high) words
 uniform float depthScale;  // a power of two: view depth -> [0, 0.5], exactly invertible
+uniform float farClip;     // fragments deeper than this are dropped (+inf: none)
+flat in uint triangle;
 layout(location = 0) out uvec2 id;
 void main() {
-  uint carry;
-  uint low = uaddCarry(idBase.x, uint(gl_PrimitiveID), carry);
-  id = uvec2(low, idBase.y + carry);
   // gl_FragCoord.w = 1 / w_clip = 1 / view depth: the one conversion to the depth convention.
-  gl_FragDepth = (1.0 / gl_FragCoord.w) * depthScale;
+  float depth = 1.0 / gl_FragCoord.w;
+  // Clipping per fragment leaves the triangle's rasterization (coverage, depth) untouched.
+  if (depth > farClip) discard;
+  uint carry;
+  uint low = uaddCarry(idBase.x, triangle, carry);
+  id = uvec2(low, idBase.y + carry);  // 64-bit modular addition
+  gl_FragDepth = depth * depthScale;
 }
 )";
 
@@ -69,6 +80,7 @@ IdProgram::IdProgram() {
   projection_ = g.GetUniformLocation(program_, "projection");
   idBase_ = g.GetUniformLocation(program_, "idBase");
   depthScale_ = g.GetUniformLocation(program_, "depthScale");
+  farClip_ = g.GetUniformLocation(program_, "farClip");
   check("building the z-buffer shaders");
 }
 
@@ -86,6 +98,10 @@ void IdProgram::setProjection(const glm::mat4& projection) const {
 
 void IdProgram::setDepthScale(float scale) const {
   api().Uniform1f(depthScale_, scale);
+}
+
+void IdProgram::setFarClip(float depth) const {
+  api().Uniform1f(farClip_, depth);
 }
 
 void IdProgram::setModelView(const glm::mat4& modelView) const {

@@ -1,6 +1,8 @@
 #include "src/zbuffer/mesh_buffers.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 #include "src/zbuffer/gl_api.hpp"
 
@@ -27,6 +29,12 @@ void MeshBuffers::upload(const Mesh& mesh) {
   uploaded_ = true;
 }
 
+void MeshBuffers::bindChunk(uint64_t c) const {
+  const Api& g = api();
+  g.BindBuffer(GL_ARRAY_BUFFER, buffers_[c]);
+  g.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+}
+
 int MeshBuffers::draw(const IdProgram& program, uint64_t first, uint64_t count,
                       uint64_t firstId) const {
   const Api& g = api();
@@ -35,15 +43,53 @@ int MeshBuffers::draw(const IdProgram& program, uint64_t first, uint64_t count,
   while (first < end) {
     const uint64_t chunk = first / kChunkTriangles, offset = first % kChunkTriangles;
     const uint64_t n = std::min(end - first, kChunkTriangles - offset);
-    g.BindBuffer(GL_ARRAY_BUFFER, buffers_[chunk]);
-    g.VertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-    // gl_PrimitiveID restarts at 0 in each draw call, so the base names this call's first one.
-    program.setIdBase(firstId);
+    bindChunk(chunk);
+    // The shader adds the triangle's index within the chunk (offset for the first one).
+    program.setIdBase(firstId - offset);
     g.DrawArrays(GL_TRIANGLES, GLint(3 * offset), GLsizei(3 * n));
     first += n;
     firstId += n;
     ++calls;
   }
+  return calls;
+}
+
+int MeshBuffers::drawChunkList(const IdProgram& program, uint64_t c,
+                               std::span<const uint32_t> local, uint64_t idBase,
+                               ListIndices& indices) const {
+  if (local.empty()) return 0;
+  const Api& g = api();
+  bindChunk(c);
+  program.setIdBase(idBase + c * kChunkTriangles);
+  int calls = 0;
+  for (size_t at = 0; at < local.size(); at += ListIndices::kBatchTriangles) {
+    const size_t n = std::min<size_t>(ListIndices::kBatchTriangles, local.size() - at);
+    indices.upload(local.subspan(at, n));
+    g.DrawElements(GL_TRIANGLES, GLsizei(3 * n), GL_UNSIGNED_INT, nullptr);
+    ++calls;
+  }
+  return calls;
+}
+
+int MeshBuffers::drawList(const IdProgram& program, std::span<const uint32_t> list, uint64_t idBase,
+                          ListIndices& indices) const {
+  for (const uint32_t t : list)
+    if (t >= triangles_)
+      throw std::out_of_range("z-buffer triangle list: triangle " + std::to_string(t) +
+                              " of a mesh of " + std::to_string(triangles_));
+  if (buffers_.size() <= 1) return drawChunkList(program, 0, list, idBase, indices);
+  // Stable counting sort by chunk, as indices within the chunk.
+  std::vector<size_t> start(buffers_.size() + 1, 0);
+  for (const uint32_t t : list) ++start[t / kChunkTriangles + 1];
+  for (size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+  std::vector<uint32_t> local(list.size());
+  std::vector<size_t> next(start.begin(), start.end() - 1);
+  for (const uint32_t t : list) local[next[t / kChunkTriangles]++] = uint32_t(t % kChunkTriangles);
+  int calls = 0;
+  const std::span<const uint32_t> all(local);
+  for (size_t c = 0; c < buffers_.size(); ++c)
+    calls +=
+        drawChunkList(program, c, all.subspan(start[c], start[c + 1] - start[c]), idBase, indices);
   return calls;
 }
 

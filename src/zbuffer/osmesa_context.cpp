@@ -35,6 +35,7 @@ OsMesaContext::~OsMesaContext() {
 }
 
 void OsMesaContext::makeCurrent() {
+  if (OSMesaGetCurrentContext() == static_cast<OSMesaContext>(context_)) return;
   if (!OSMesaMakeCurrent(static_cast<OSMesaContext>(context_), placeholder_.data(),
                          GL_UNSIGNED_BYTE, 1, 1))
     throw std::runtime_error("OSMesaMakeCurrent failed");

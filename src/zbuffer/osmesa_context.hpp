@@ -15,7 +15,7 @@ class OsMesaContext {
   OsMesaContext(const OsMesaContext&) = delete;
   OsMesaContext& operator=(const OsMesaContext&) = delete;
 
-  // Binds the context to the calling thread; call before any GL work in that thread.
+  // Binds the context to the calling thread (cheap when it already is); call before GL work.
   void makeCurrent();
   // "4.5 (Core Profile) Mesa 22.3.6, llvmpipe (LLVM 15.0.6, 256 bits)".
   std::string description() const { return description_; }

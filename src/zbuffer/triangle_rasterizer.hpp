@@ -12,11 +12,10 @@
 // - Positions are made camera-relative in double before rounding to float.
 // - Must be used from one thread; the GL context is made current in begin().
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <memory>
 #include <span>
 #include <string>
-
-#include <glm/glm.hpp>
 
 #include "src/core/camera.hpp"
 #include "src/core/framebuffer.hpp"
@@ -27,7 +26,8 @@ namespace lzb {
 struct RasterCounts {
   uint64_t triangles = 0;  // triangles handed to GL since begin()
   uint64_t drawCalls = 0;
-  double uploadSeconds = 0.0;  // first-use uploads of node meshes since begin()
+  double uploadSeconds = 0.0;    // first-use uploads of node meshes since begin()
+  double readbackSeconds = 0.0;  // end()'s reading and converting, after GL has finished
 };
 
 class TriangleRasterizer {
@@ -41,6 +41,8 @@ class TriangleRasterizer {
 
   // Starts a pass set: clears the target to empty, sets the camera. farClip (view depth, <=
   // camera.farPlane()) clips everything beyond it, e.g. at a partition plane; 0 = camera far.
+  // Clipping drops fragments deeper than farClip (exactly: depth > farClip as doubles) and leaves
+  // the rest of the triangle's pixels and depths as an unclipped draw gives them.
   void begin(const Camera& camera, double farClip = 0.0);
   // Changes the far clip between draws (e.g. the near scene up to the plane, then the PVL).
   void setFarClip(double farClip);
@@ -49,7 +51,9 @@ class TriangleRasterizer {
   void drawRange(uint32_t node, const glm::dmat4& world, uint64_t first, uint64_t count,
                  uint64_t firstId);
   // The listed triangles of node's mesh (any order, duplicates allowed); triangle t gets ID
-  // idBase + t. Uses the node's uploaded mesh with an index list (no vertex copies).
+  // idBase + t. Uses the node's uploaded mesh with an index list (no vertex copies). Drawn in list
+  // order, except that a mesh of over MeshBuffers::kChunkTriangles is drawn chunk by chunk (list
+  // order within each), so an ascending list is always drawn in its order.
   void drawList(uint32_t node, const glm::dmat4& world, std::span<const uint32_t> triangles,
                 uint64_t idBase);
   // Waits for GL, reads IDs and depths into fb (sized to the camera; row 0 = top; colour is left
