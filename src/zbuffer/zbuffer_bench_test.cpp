@@ -1,9 +1,11 @@
-// Throughput of the z-buffer on a random 2 M triangle soup at 640x480 (regular tests, so the
-// figures are printed on every run; they assert only that the frames are complete and plausible).
+// Throughput of the z-buffer on a random 2 M triangle soup at 640x480, run only with LZB_BENCH=1
+// (they take seconds and print figures; they assert only that the frames are complete):
+//   LZB_BENCH=1 build/src/zbuffer_test --gtest_filter='ZBufferBench.*'
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <numeric>
 #include <random>
@@ -17,6 +19,11 @@ namespace lzb {
 namespace {
 
 constexpr size_t kTriangles = 2'000'000;
+
+bool benchEnabled() {
+  const char* v = std::getenv("LZB_BENCH");
+  return v && *v && *v != '0';
+}
 
 Scene soupScene() {
   Scene scene;
@@ -35,6 +42,7 @@ Scene soupScene() {
 }
 
 TEST(ZBufferBench, TwoMillionTriangleSoupAt640x480) {
+  if (!benchEnabled()) GTEST_SKIP() << "set LZB_BENCH=1";
   const Scene scene = soupScene();
   const Camera camera(frameBounds(scene.bounds()), 640, 480);
   ZBufferRenderer renderer(scene, RenderOptions{});
@@ -69,6 +77,7 @@ TEST(ZBufferBench, TwoMillionTriangleSoupAt640x480) {
 // drawList's cost over drawRange: the same 2 M triangles as one range, as an ascending list and
 // as a shuffled list (seconds from begin() to the end of end(), best of 3 after an upload pass).
 TEST(ZBufferBench, ListVersusRangeOnTwoMillionTriangles) {
+  if (!benchEnabled()) GTEST_SKIP() << "set LZB_BENCH=1";
   const Scene scene = soupScene();
   const Camera camera(frameBounds(scene.bounds()), 640, 480);
   TriangleRasterizer r(scene);
