@@ -4,6 +4,8 @@
 #include "src/core/error.hpp"
 #include "src/zbuffer/zbuffer_renderer.hpp"
 // Method plugins of later issues include their header here.
+#include "raycast/lzb_method.hpp"
+#include "src/rzb/rzb_method.hpp"
 
 namespace lzb {
 
@@ -28,6 +30,8 @@ const std::vector<MethodPlugin>& methods() {
       exactMethod<ZBufferRenderer>("zbuffer", "exact: conventional z-buffer through OSMesa"),
       exactMethod<RaycastRenderer>("raycast", "exact: Embree primary rays"),
       // Method plugins of later issues: one line each below this comment.
+      lzbMethod(),
+      rzbMethod(),
   };
   return all;
 }

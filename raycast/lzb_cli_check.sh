@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# End-to-end checks of `lzb render --method lzb`: every stage against the z-buffer reference
+# (report.json accuracy >= 99.9 %), the report's LZB fields, and bad options (exit status 2,
+# a message naming the option, nothing written).
+# usage: lzb_cli_check.sh LZB_BINARY WORK_DIR
+set -euo pipefail
+lzb="$1" work="$2"
+rm -rf "$work" && mkdir -p "$work"
+
+for stage in naive lazy selective oor final; do
+  out="$work/$stage"
+  "$lzb" render "builtin:city?blocks=4" --method lzb --lzb-stage "$stage" --reference zbuffer \
+    --frames 2 --width 192 --height 144 --threads 2 --quiet --out "$out" >/dev/null
+  python3 - "$out/report.json" "$stage" <<'PY'
+import json, sys
+report, stage = json.load(open(sys.argv[1])), sys.argv[2]
+assert report["method_parameters"]["stage"] == stage, report["method_parameters"]
+for f in report["frames"]:
+    a = f["accuracy"]
+    assert a["correct_pixel_rate"] >= 0.999 and a["exact_id_rate"] >= 0.999, (stage, a)
+    c, s = f["counts"], f["stages"]
+    for key in ("plane_depth", "plane_reused", "near_triangles", "far_triangles",
+                "unfinished_pixels", "rays_cast"):
+        assert key in c, (stage, key)
+    for key in ("cull", "plane", "near", "unfinished", "shade"):
+        assert key in s, (stage, key)
+    if stage != "naive":
+        for key in ("octree_nodes_visited", "ray_triangle_tests", "pvl_size"):
+            assert key in c, (stage, key)
+        assert "pvl_find" in s and "pvl_render" in s, stage
+print("ok:", stage, [round(f["accuracy"]["exact_id_rate"], 5) for f in report["frames"]])
+PY
+done
+
+# Bad options: exit status 2, the option named, no output folder.
+bad() {
+  local expect="$1"
+  shift
+  local out="$work/bad"
+  set +e
+  msg=$("$lzb" render "builtin:city?blocks=2" --method lzb --quiet --out "$out" "$@" 2>&1)
+  status=$?
+  set -e
+  [ "$status" -eq 2 ] || { echo "FAIL: $* exited $status (want 2): $msg"; exit 1; }
+  grep -q -- "$expect" <<<"$msg" || { echo "FAIL: $* message lacks '$expect': $msg"; exit 1; }
+  [ ! -e "$out" ] || { echo "FAIL: $* wrote $out"; exit 1; }
+  echo "ok: $* -> $msg"
+}
+bad "--plane" --plane 1.5
+bad "--plane" --plane 0
+bad "--plane" --plane far
+bad "--occluders" --occluders -1
+bad "--lzb-stage" --lzb-stage fastest
+bad "--occluder-mode" --occluder-mode random
+bad "--plane-grid" --plane-grid 0
+bad "--lzb-walk" --lzb-walk sideways

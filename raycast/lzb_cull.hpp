@@ -1,0 +1,47 @@
+#pragma once
+// LZB step 1: hierarchical view-frustum culling on the octrees of the instanced scene graph. Each
+// node's octree is culled in the node's frame; instance entries of the surviving leaves lead into
+// the child's octree (each instance once per path). The result lists every non-empty leaf with
+// triangles in the frustum (its content box, NodeAccel::contentBox, tested), with the view-depth
+// range of that box, so that the partition plane can split it into the near scene (z-buffer) and
+// the far scene (rays, OOR objects) afterwards.
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "raycast/lzb_accel.hpp"
+#include "src/core/camera.hpp"
+
+namespace lzb {
+
+// A (node, instance path) placement reached by the culling walk.
+struct CullPath {
+  uint32_t node = 0;
+  glm::dmat4 world{1.0};  // node frame -> world
+  uint64_t idBase = 0;    // expanded ID of the node's triangle 0 at this place
+  // View depth of a node-frame point p: dot(depthGrad, p) + depthOffset (affine in p).
+  glm::dvec3 depthGrad{0.0};
+  double depthOffset = 0.0;
+};
+
+struct CullLeaf {
+  uint32_t path;              // index into CulledScene::paths
+  uint32_t leaf;              // octree node index (a leaf with triangles)
+  double depthMin, depthMax;  // view-depth range of the leaf's content box
+};
+
+struct CulledScene {
+  std::vector<CullPath> paths;   // in ascending idBase order (depth-first, instances in order)
+  std::vector<CullLeaf> leaves;  // grouped by path, in path order
+  uint64_t instancesVisited = 0;
+};
+
+// Visible-instance limit: past it the scene is too instanced for a per-leaf cull (throws
+// InputError; the ray casting methods handle such scenes).
+constexpr size_t kMaxCullPaths = size_t(1) << 22;
+
+CulledScene cullScene(const LzbAccel& accel, const Camera& camera);
+// The same into `out` (cleared first), reusing its memory frame after frame.
+void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out);
+
+}  // namespace lzb

@@ -1,0 +1,63 @@
+#pragma once
+// Settings of --method lzb (local z-buffering, Han & Zeiger; see raycast/LZB.md): which stage of
+// the paper's pipeline handles the far scene, how the partition plane is placed, and the local
+// occluders of the selective stages.
+#include <cstdint>
+#include <string>
+
+namespace lzb {
+
+// The far-scene stage; each includes the ones above it (naive is the exception: it has no PVL).
+enum class LzbStage {
+  kNaive,      // classic ray casting (Embree) of the unfinished pixels
+  kLazy,       // own octree walk to the first hit -> potentially visible list (PVL) -> z-buffer
+  kSelective,  // lazy with local occluders (Octree-o static / dynamic visibility / hybrid)
+  kOor,        // selective, rays only from pixels inside projected far octree leaves
+  kFinal,      // oor with the coherent (rope) ray-octree walk instead of top-down
+};
+
+enum class OccluderMode { kStatic, kDynamic, kHybrid };
+
+// How a ray walks an octree: best-first from the root, or leaf to leaf along neighbour links
+// starting from the previous ray's start leaf (see lzb_ray_walk.hpp).
+enum class OctreeWalk { kTopDown, kCoherent };
+
+struct LzbOptions {
+  LzbStage stage = LzbStage::kFinal;
+  double planeFraction = 0.0;  // 0: dynamic plane (coarse ray casting); else static, in (0, 1)
+  bool costPlane = false;      // dynamic: the cost-model plane instead of the mean (LZB.md)
+  int planeGrid = 32;          // coarse rays: planeGrid x planeGrid uniform pixel grid
+  int planeReuse = 8;          // frames a dynamic plane may be reused (0: recompute every frame)
+  int occluders = 5;           // K static local occluders per leaf (the paper's setting)
+  OccluderMode occluderMode = OccluderMode::kDynamic;  // smallest PVL measured (LZB.md)
+  int leafEntries = 150;        // octree leaf limit for nodes with triangles (the paper's)
+  int instanceLeafEntries = 8;  // leaf limit for nodes with more instances than triangles
+  bool walkOverride = false;    // use `walk` instead of the stage's own octree walk
+  OctreeWalk walk = OctreeWalk::kCoherent;
+  int depthComplexityGrid = 0;  // diagnostic: G x G rays count every surface (0: off)
+
+  bool dynamicPlane() const { return planeFraction == 0.0; }
+  bool usesPvl() const { return stage != LzbStage::kNaive; }
+  bool usesOccluders() const { return stage >= LzbStage::kSelective; }
+  bool usesOor() const { return stage >= LzbStage::kOor; }
+  OctreeWalk octreeWalk() const {
+    if (walkOverride) return walk;
+    return stage == LzbStage::kFinal ? OctreeWalk::kCoherent : OctreeWalk::kTopDown;
+  }
+};
+
+// Parsing and names (parse* throw InputError naming `field` on an unknown value).
+LzbStage parseLzbStage(const std::string& text, const std::string& field);
+OccluderMode parseOccluderMode(const std::string& text, const std::string& field);
+OctreeWalk parseOctreeWalk(const std::string& text, const std::string& field);
+// --plane: "auto" (dynamic, mean depth), "cost" (dynamic, cost model) or a fraction in (0, 1)
+// (static); sets planeFraction and costPlane.
+void parsePlane(const std::string& text, const std::string& field, LzbOptions& options);
+std::string toString(LzbStage stage);
+std::string toString(OccluderMode mode);
+std::string toString(OctreeWalk walk);
+
+// Throws InputError naming the option (CLI spelling) for an out-of-range value.
+void validate(const LzbOptions& options);
+
+}  // namespace lzb

@@ -1,0 +1,119 @@
+#include "raycast/lzb_plane.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+namespace lzb {
+
+PlaneDecision PartitionPlane::coarseRayCast(const EmbreeScene& embree, const Camera& camera,
+                                            int grid, std::vector<double>* hitDepths) {
+  const int gx = std::clamp(grid, 1, camera.width()), gy = std::clamp(grid, 1, camera.height());
+  std::vector<Ray> rays;
+  rays.reserve(size_t(gx) * size_t(gy));
+  for (int j = 0; j < gy; ++j)
+    for (int i = 0; i < gx; ++i) {
+      const double px = (i + 0.5) * camera.width() / gx, py = (j + 0.5) * camera.height() / gy;
+      rays.push_back({camera.position(), camera.pixelDirection(px, py), camera.nearPlane(),
+                      camera.farPlane()});
+    }
+  std::vector<RayHit> hits(rays.size());
+  embree.intersect(rays, hits);
+  PlaneDecision d;
+  d.coarseRays = rays.size();
+  double sum = 0.0;
+  for (const RayHit& h : hits)
+    if (h.hit()) {
+      sum += double(h.t);  // t is the view depth (pixelDirection's forward component is 1)
+      ++d.coarseHits;
+      if (hitDepths) hitDepths->push_back(double(h.t));
+    }
+  d.depth = d.coarseHits ? sum / double(d.coarseHits) : camera.farPlane();
+  d.depth = std::clamp(d.depth, camera.nearPlane(), camera.farPlane());
+  return d;
+}
+
+double PartitionPlane::costPlane(std::vector<double> hits, uint64_t rays, const Camera& camera,
+                                 std::span<const LeafLoad> loads, double rayCost) {
+  if (hits.empty() || rays == 0) return camera.farPlane();
+  std::sort(hits.begin(), hits.end());
+  // Candidate k: z = hits[k - 1] (k = 0: the near plane). Near triangles per candidate from a
+  // histogram of leaf starts over the candidates, then prefix sums.
+  const size_t n = hits.size();
+  std::vector<double> near(n + 1, 0.0);
+  for (const LeafLoad& l : loads) {
+    // First candidate whose z exceeds the leaf's start: candidates from there on draw it.
+    const size_t k = size_t(std::upper_bound(hits.begin(), hits.end(), l.depthMin) - hits.begin());
+    if (l.depthMin < camera.nearPlane()) {
+      near[0] += l.triangles;
+    } else if (k < n) {
+      near[k + 1] += l.triangles;
+    }
+  }
+  for (size_t k = 1; k <= n; ++k) near[k] += near[k - 1];
+  const double pixelsPerRay = double(camera.width()) * double(camera.height()) / double(rays);
+  double best = std::numeric_limits<double>::infinity(), z = camera.nearPlane();
+  for (size_t k = 0; k <= n; ++k) {
+    const double unfinished = double(n - k) * pixelsPerRay;  // hits beyond the candidate
+    const double cost = near[k] + rayCost * unfinished;
+    if (cost < best) {
+      best = cost;
+      z = k == 0 ? camera.nearPlane() : hits[k - 1];
+    }
+  }
+  return std::clamp(z, camera.nearPlane(), camera.farPlane());
+}
+
+bool PartitionPlane::stillValid(const Camera& c) const {
+  if (!have_ || uses_ >= options_.planeReuse) return false;
+  if (c.width() != at_.width() || c.height() != at_.height() ||
+      c.fovyDegrees() != at_.fovyDegrees())
+    return false;
+  if (glm::length(c.position() - at_.position()) > kReuseMove * depth_) return false;
+  const double cosTurn = std::clamp(glm::dot(c.forward(), at_.forward()), -1.0, 1.0);
+  const double turnDegrees = std::acos(cosTurn) * 180.0 / 3.14159265358979323846;
+  if (turnDegrees > kReuseTurn * c.fovyDegrees()) return false;
+  const double pixels = double(c.width()) * double(c.height());
+  if (observed_ &&
+      double(lastUnfinished_) > kReuseGrowth * double(unfinishedAtCompute_) + kReuseSlack * pixels)
+    return false;
+  return true;
+}
+
+PlaneDecision PartitionPlane::place(const EmbreeScene& embree, const Camera& camera,
+                                    std::span<const LeafLoad> loads) {
+  if (!options_.dynamicPlane()) {
+    PlaneDecision d;
+    d.depth =
+        camera.nearPlane() + options_.planeFraction * (camera.farPlane() - camera.nearPlane());
+    return d;
+  }
+  if (stillValid(camera)) {
+    ++uses_;
+    PlaneDecision d;
+    d.depth = std::clamp(depth_, camera.nearPlane(), camera.farPlane());
+    d.reused = true;
+    return d;
+  }
+  std::vector<double> hits;
+  PlaneDecision d = coarseRayCast(embree, camera, options_.planeGrid, &hits);
+  if (options_.costPlane)
+    d.depth = costPlane(std::move(hits), d.coarseRays, camera, loads,
+                        options_.usesPvl() ? kRayCost : kNaiveRayCost);
+  have_ = true;
+  at_ = camera;
+  depth_ = d.depth;
+  uses_ = 0;
+  observed_ = false;
+  return d;
+}
+
+void PartitionPlane::observe(uint64_t unfinished) {
+  if (!have_) return;
+  if (uses_ == 0 && !observed_) unfinishedAtCompute_ = unfinished;
+  lastUnfinished_ = unfinished;
+  observed_ = true;
+}
+
+}  // namespace lzb

@@ -1,0 +1,73 @@
+#pragma once
+// --method lzb: local z-buffering (Han & Zeiger, sections II-III; see raycast/LZB.md).
+//
+// Per frame: (1) hierarchical frustum culling of the octrees; (2) the partition plane z_clip;
+// (3) the near scene (culled leaves in front of the plane) by z-buffer clipped at z_clip;
+// (4) the unfinished pixels (left empty by the near pass); (5) the far scene by the chosen stage:
+// naive Embree rays, or PVL finding by the own octree walk (lazy / selective / OOR / final) and
+// the PVL by z-buffer into a second pass; the passes are combined with compositeNearer; colour by
+// shadeFromIds.
+//
+// Ranks: every rank renders the near pass (cheap) and so knows the unfinished pixels and keeps
+// the same plane state; each casts rays only in its screen tiles (tile % size == rank) and draws
+// only its PVL part; compositing all ranks' framebuffers by (depth, id) gives the 1-rank image.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "raycast/embree_scene.hpp"
+#include "raycast/lzb_accel.hpp"
+#include "raycast/lzb_cull.hpp"
+#include "raycast/lzb_draw_lists.hpp"
+#include "raycast/lzb_oor.hpp"
+#include "raycast/lzb_options.hpp"
+#include "raycast/lzb_plane.hpp"
+#include "raycast/lzb_ray_walk.hpp"
+#include "src/core/renderer.hpp"
+#include "src/zbuffer/triangle_rasterizer.hpp"
+
+namespace lzb {
+
+class LzbRenderer : public Renderer {
+ public:
+  // Builds the octrees (Octree-o, ropes), the Embree scene and the GL context. Throws InputError
+  // for out-of-range options.
+  LzbRenderer(const Scene& scene, const RenderOptions& options, const LzbOptions& lzb);
+  ~LzbRenderer() override;
+
+  std::string name() const override { return "lzb"; }
+  std::string decomposition() const override;
+  void render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
+              FrameStats& stats) override;
+
+  // What the last frame did, for tests and studies.
+  struct FrameDetail {
+    PlaneDecision plane;
+    Framebuffer nearPass;              // ids/depths of the near pass alone
+    std::vector<uint32_t> castPixels;  // framebuffer indices of the pixels rays were cast from
+    DrawLists pvl;                     // this rank's PVL (empty for naive)
+    RayWalkCounts walk;
+  };
+  const FrameDetail& lastFrame() const { return last_; }
+  const LzbAccel& accel() const { return *accel_; }
+  const LzbOptions& options() const { return lzb_; }
+
+ private:
+  const Scene& scene_;
+  RenderOptions options_;
+  LzbOptions lzb_;
+  std::unique_ptr<LzbAccel> accel_;
+  std::unique_ptr<EmbreeScene> embree_;
+  std::unique_ptr<TriangleRasterizer> raster_;
+  PartitionPlane plane_;
+  std::vector<RayWalker> walkers_;  // one per thread
+  // Per-frame state kept between frames so its memory is reused (no page faults per frame).
+  std::vector<PvlPart> parts_;  // one per owned tile
+  CulledScene culled_;
+  std::unique_ptr<OorObjects> oor_;
+  Framebuffer farPass_;
+  FrameDetail last_;
+  bool buildReported_ = false;
+};
+
+}  // namespace lzb

@@ -1,0 +1,54 @@
+#pragma once
+// LZB step 5 for one screen tile, self-contained so tiles can be dealt to threads and ranks:
+// input = the tile's unfinished pixels (empty after the near pass) and, with OOR, the polygons
+// binned to the tile; output = the tile's PVL part (or, naive, its ray-cast pixels) and counts.
+// The result depends only on the tile, never on the thread that ran it or the tiles before.
+#include <cstdint>
+#include <vector>
+
+#include "raycast/embree_scene.hpp"
+#include "raycast/lzb_oor.hpp"
+#include "raycast/lzb_ray_walk.hpp"
+#include "raycast/screen_tiles.hpp"
+#include "src/core/camera.hpp"
+#include "src/core/framebuffer.hpp"
+
+namespace lzb {
+
+struct TileCastCounts {
+  uint64_t unfinished = 0;    // pixels of the tile the near pass left empty
+  uint64_t cast = 0;          // rays cast (unfinished pixels, inside some polygon with OOR)
+  uint64_t polygonTests = 0;  // OOR point-in-polygon tests
+  void add(const TileCastCounts& o) {
+    unfinished += o.unfinished;
+    cast += o.cast;
+    polygonTests += o.polygonTests;
+  }
+};
+
+struct TileCastInput {
+  const Camera* camera;
+  const Framebuffer* nearPass;  // unfinished pixel: id == kNoId
+  double tMin, tMax;            // ray interval (view depth): the partition plane to far
+  const OorObjects* oor;        // null: cast every unfinished pixel
+};
+
+// The pixels (framebuffer indices) of tile r to cast, in row order: unfinished and, with OOR,
+// inside a polygon binned to the tile.
+// mask: scratch of at least r.pixels() bytes.
+std::vector<uint32_t> tilePixelsToCast(const TileRect& r, int tileIndex, const TileCastInput& in,
+                                       std::vector<uint8_t>& mask, TileCastCounts& counts);
+
+// PVL finding for one tile with the walker (its coherence state is reset first). The pixels
+// cast go to *cast when given.
+void castTilePvl(RayWalker& walker, const TileRect& r, int tileIndex, const TileCastInput& in,
+                 std::vector<uint8_t>& mask, PvlPart& out, TileCastCounts& counts,
+                 std::vector<uint32_t>* cast = nullptr);
+
+// Naive LZB: classic ray casting (Embree packets) of the tile's unfinished pixels; hits go to
+// far (depth, id) at their pixels.
+void castTileEmbree(const EmbreeScene& embree, const TileRect& r, int tileIndex,
+                    const TileCastInput& in, std::vector<uint8_t>& mask, Framebuffer& far,
+                    TileCastCounts& counts, std::vector<uint32_t>* cast = nullptr);
+
+}  // namespace lzb
