@@ -1,0 +1,274 @@
+#!/usr/bin/env python3
+"""Randomized z-buffer (--method rzb) studies: CSV files (the command on the first line) and PNG plots.
+
+Usage (from the repository root, after scripts/build.sh and scripts/fetch-test-meshes.sh):
+  python3 runs/rzb/run.py [STUDY ...] [--quick] [--plot-only]
+STUDY: sensitivity vs_zbuffer throughput table1 walkthrough eps dynamic (default: all)
+
+  sensitivity  chessboard from 2^11 to ~1.4*10^14 triangles, point pass only (--fallback off), 640x480:
+               frame time and its ratio largest / smallest (Wand et al. Fig. 6).        -> sensitivity.csv/.png
+  vs_zbuffer   rzb (new sample set, and cache warm) against zbuffer on the largest scene the z-buffer
+               still renders here (forest, 6.3*10^8 triangles), in one process, with accuracy. -> vs_zbuffer.csv
+  throughput   point-pass samples per second against the atomic-min scatter limit measured in the
+               same process.                                                            -> throughput.csv
+  table1       Table 1 analogue: d = 1, 2, 5, new sample set vs cache, on city, forest and a real mesh,
+               with the z-buffer's time and accuracy.                                   -> table1.csv
+  walkthrough  80-frame walkthrough, cache against no cache (Fig. 8).                   -> walkthrough.csv/.png
+  eps          box selection / reconstruction time against eps, and --eps auto (Fig. 7). -> eps.csv/.png
+  dynamic      insert a 5,558-triangle object into a 1.26 M triangle city one triangle at a time and
+               remove it, against rebuilding (section 8.4).                             -> dynamic.csv
+The machine these ran on has 2 cores shared with other work: compare figures from the same run.
+"""
+import csv, json, os, statistics, subprocess, sys, tempfile
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+HERE = os.path.join(ROOT, "runs", "rzb")
+BUILD = os.environ.get("LZB_BUILD", os.path.join(ROOT, "build"))
+LZB = os.path.join(BUILD, "lzb")
+TEST = os.path.join(BUILD, "src", "rzb_test")
+DATA = os.path.join(BUILD, "data") if os.path.isdir(os.path.join(BUILD, "data")) else os.path.join(ROOT, "build", "data")
+THREADS = 2
+quick = "--quick" in sys.argv
+plot_only = "--plot-only" in sys.argv
+studies = [a for a in sys.argv[1:] if not a.startswith("--")] or [
+    "sensitivity", "vs_zbuffer", "throughput", "table1", "walkthrough", "eps", "dynamic"]
+CMD = "python3 runs/rzb/run.py " + " ".join(sys.argv[1:])
+
+
+def write_csv(name, rows, fields, note=""):
+    with open(os.path.join(HERE, name), "w", newline="") as f:
+        f.write(f"# command: {CMD}; {THREADS} threads, 640x480{'; ' + note if note else ''}\n")
+        w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
+        w.writeheader()
+        w.writerows(rows)
+    print(f"wrote runs/rzb/{name}", flush=True)
+
+
+def read_csv(name):
+    with open(os.path.join(HERE, name)) as f:
+        return list(csv.DictReader(l for l in f if not l.startswith("#")))
+
+
+def render(scene, args, frames=3):
+    """lzb render; returns the report's frames."""
+    with tempfile.TemporaryDirectory() as out:
+        cmd = [LZB, "render", scene, "--threads", str(THREADS), "--frames", str(frames), "--quiet",
+               "--out", out] + args
+        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
+        with open(os.path.join(out, "report.json")) as f:
+            return json.load(f)
+
+
+def bench(test, env):
+    """Runs a disabled benchmark test of rzb_test; returns its BENCH json lines."""
+    e = dict(os.environ, RZB_BENCH_THREADS=str(THREADS), LZB_SOURCE_DIR=ROOT, **env)
+    p = subprocess.run([TEST, "--gtest_also_run_disabled_tests", f"--gtest_filter=RzbBench.DISABLED_{test}"],
+                       env=e, check=True, capture_output=True, text=True)
+    return [json.loads(l[6:]) for l in p.stdout.splitlines() if l.startswith("BENCH ")]
+
+
+def gnuplot(script):
+    subprocess.run(["gnuplot"], input=script, text=True, check=True, cwd=HERE)
+
+
+# ---------------------------------------------------------------------------------------------
+def sensitivity():
+    ks = range(5, 12 if quick else 24)  # n = 2^k squares per side: 2 n^2 triangles
+    rows = []
+    if not plot_only:
+        for k in ks:
+            n = 2 ** k
+            rep = render(f"builtin:chessboard?n={n}", ["--method", "rzb", "--fallback", "off"])
+            fr = rep["frames"]
+            row = {"n": n, "triangles": rep["scene"]["triangles_expanded"],
+                   "median_frame_s": statistics.median(f["seconds"] for f in fr),
+                   "median_splat_s": statistics.median(f["stages"]["splat"] for f in fr),
+                   "median_select_s": statistics.median(f["stages"]["select"] for f in fr),
+                   "samples": statistics.median(f["counts"]["samples_drawn"] for f in fr),
+                   "boxes": statistics.median(f["counts"]["boxes_selected"] for f in fr),
+                   "setup_s": rep["setup_seconds"]}
+            rows.append(row)
+            print(f"chessboard n=2^{k:2d} {row['triangles']:>22,} tris {row['median_frame_s']:.3f} s "
+                  f"{row['samples']:.3g} samples", flush=True)
+        base = rows[0]["median_frame_s"]
+        for r in rows:
+            r["ratio_to_smallest"] = r["median_frame_s"] / base
+        write_csv("sensitivity.csv", rows, ["n", "triangles", "median_frame_s", "ratio_to_smallest",
+                                            "median_splat_s", "median_select_s", "samples", "boxes", "setup_s"],
+                  "point pass only (--fallback off), median of 3 frames")
+    rows = read_csv("sensitivity.csv")
+    ratio = max(float(r["median_frame_s"]) for r in rows) / float(rows[0]["median_frame_s"])
+    print(f"output sensitivity: largest / smallest frame time = {ratio:.2f}")
+    gnuplot(f"""set terminal pngcairo size 800,500
+set output 'sensitivity.png'
+set datafile separator ','
+set logscale x
+set xlabel 'triangles (chessboard, instanced above 2^13)'
+set ylabel 'frame time (s)'
+set yrange [0:*]
+set grid
+set title 'rzb point pass (--fallback off), 640x480: largest/smallest = {ratio:.2f}'
+plot 'sensitivity.csv' skip 2 using 2:3 with linespoints title 'frame', '' skip 2 using 2:5 with linespoints title 'splat'
+""")
+
+
+# ---------------------------------------------------------------------------------------------
+def vs_zbuffer():
+    """The Table 1 run of the largest scene the z-buffer still renders here (both in one process)."""
+    scene = "builtin:forest?levels=2" if quick else "builtin:forest?levels=3"
+    if not plot_only:
+        rows = [j for j in bench("Table1", {"RZB_BENCH_SCENE": scene}) if j["d"] == 1]
+        for j in rows:
+            j["speedup"] = j["zbuffer_s"] / j["frame_s"]
+            print(f"{scene} cache={j['cache']!s:5s}: rzb {j['frame_s']:.3f} s, zbuffer {j['zbuffer_s']:.3f} s "
+                  f"(x{j['speedup']:.1f}), correct {j['correct_3x3']:.4f}", flush=True)
+        write_csv("vs_zbuffer.csv", rows, ["scene", "triangles", "d", "cache", "frame_s", "first_frame_s",
+                                           "zbuffer_s", "speedup", "correct_3x3", "psnr", "samples",
+                                           "fallback_triangles", "setup_s"],
+                  "rzb and zbuffer render the same view in one process; cache: best warm frame")
+
+
+# ---------------------------------------------------------------------------------------------
+def throughput():
+    scenes = ["builtin:chessboard?n=64", os.path.join(DATA, "bunny00.off"), "builtin:forest?levels=3",
+              "builtin:chessboard?n=1048576"]
+    if quick:
+        scenes = scenes[:2]
+    if not plot_only:
+        rows = []
+        for s in scenes:
+            # Point pass only, except the forest, whose large terrain triangles at the near plane
+            # go to the fallback (the point pass alone would cap those boxes).
+            fallback = "auto" if "forest" in s else "off"
+            for j in bench("PointPassParts", {"RZB_BENCH_SCENE": s, "RZB_BENCH_FALLBACK": fallback}):
+                rows.append(j)
+                print(f"{s}: {j['splat_per_s'] / 1e6:.1f} M samples/s, scatter limit "
+                      f"{j['scatter_limit_per_s'] / 1e6:.1f} M/s = {100 * j['fraction_of_limit']:.1f} %", flush=True)
+        write_csv("throughput.csv", rows, ["scene", "fallback", "threads", "samples", "splat_per_s", "scatter_limit_per_s",
+                                           "fraction_of_limit", "draw_per_s", "draw_pick_per_s",
+                                           "cpu_ns_per_sample_draw", "cpu_ns_per_sample_draw_pick",
+                                           "cpu_ns_per_sample_splat", "wide_keys", "boxes"],
+                  "the point pass of the default view, best of 3; limit: random 64-bit atomic min into 640x480")
+
+
+# ---------------------------------------------------------------------------------------------
+def table1():
+    scenes = [("city", "builtin:city?blocks=8" if quick else "builtin:city?blocks=32"),
+              ("forest", "builtin:forest?levels=2"),
+              ("bunny (scanned)", os.path.join(DATA, "bunny00.off")),
+              ("forest 2.6e12", "builtin:forest?levels=6")]
+    if not plot_only:
+        rows = []
+        for name, s in scenes:
+            env = {"RZB_BENCH_SCENE": s}
+            if "levels=6" in s:
+                env["RZB_BENCH_NO_ZBUFFER"] = "1"
+            for j in bench("Table1", env):
+                j["name"] = name
+                rows.append(j)
+                print(f"{name:16s} d={j['d']} cache={j['cache']!s:5s} {j['frame_s']:.3f} s "
+                      f"(zbuffer {j['zbuffer_s']:.3f} s) correct {j.get('correct_3x3', float('nan')):.4f}", flush=True)
+        write_csv("table1.csv", rows, ["name", "scene", "triangles", "d", "cache", "frame_s", "first_frame_s",
+                                       "zbuffer_s", "correct_3x3", "psnr", "samples", "fallback_triangles",
+                                       "setup_s", "tree_bytes"],
+                  "frame_s: new sample set (cache off) or best warm frame of the same view (cache on)")
+
+
+# ---------------------------------------------------------------------------------------------
+def walkthrough():
+    runs = [("city", "builtin:city", "0.5"), ("forest", "builtin:forest?levels=3", "0.5")]
+    if quick:
+        runs = runs[:1]
+    if not plot_only:
+        rows = []
+        for name, s, step in runs:
+            js = bench("CacheWalkthrough", {"RZB_BENCH_SCENE": s, "RZB_BENCH_STEP": step})
+            for j in js:
+                j["name"] = name
+            rows += js
+            plain = sum(j["plain_s"] for j in js)
+            cached = sum(j["cached_s"] for j in js)
+            print(f"{name}: 80 frames {plain:.2f} s without cache, {cached:.2f} s with: x{plain / cached:.2f}", flush=True)
+        write_csv("walkthrough.csv", rows, ["name", "scene", "frame", "plain_s", "cached_s", "cache_hits",
+                                            "cache_misses", "cache_bytes", "plain_samples", "cached_samples"],
+                  "camera walks forward 0.5 m per frame; the cache starts empty")
+    rows = read_csv("walkthrough.csv")
+    for name in dict.fromkeys(r["name"] for r in rows):
+        sub = [r for r in rows if r["name"] == name]
+        with open(os.path.join(HERE, f"walkthrough_{name}.dat"), "w") as f:
+            for r in sub:
+                f.write(f"{r['frame']} {r['plain_s']} {r['cached_s']}\n")
+    names = list(dict.fromkeys(r["name"] for r in rows))
+    plots = ", ".join(f"'walkthrough_{n}.dat' using 1:2 with lines title '{n}, no cache', "
+                      f"'walkthrough_{n}.dat' using 1:3 with lines title '{n}, cache'" for n in names)
+    gnuplot(f"""set terminal pngcairo size 800,500
+set output 'walkthrough.png'
+set xlabel 'frame'
+set ylabel 'frame time (s)'
+set logscale y
+set grid
+set title 'rzb 80-frame walkthrough, 640x480, d = 1'
+plot {plots}
+""")
+    for n in names:
+        os.remove(os.path.join(HERE, f"walkthrough_{n}.dat"))
+
+
+# ---------------------------------------------------------------------------------------------
+def eps():
+    scenes = [("city", "builtin:city"), ("forest", "builtin:forest?levels=3")]
+    if quick:
+        scenes = scenes[:1]
+    if not plot_only:
+        rows = []
+        for name, s in scenes:
+            for j in bench("EpsCurve", {"RZB_BENCH_SCENE": s}):
+                j["name"] = name
+                rows.append(j)
+                print(f"{name} eps {j['eps']:.3f}{' (auto)' if j['auto'] else ''}: {j['frame_s']:.3f} s "
+                      f"select {j['select_s']:.4f} reconstruct {j['reconstruct_s']:.3f}", flush=True)
+        write_csv("eps.csv", rows, ["name", "scene", "eps", "auto", "frame_s", "select_s", "reconstruct_s",
+                                    "nodes_visited", "boxes", "samples"], "best of 3 frames of the default view")
+    rows = read_csv("eps.csv")
+    names = list(dict.fromkeys(r["name"] for r in rows))
+    for n in names:
+        with open(os.path.join(HERE, f"eps_{n}.dat"), "w") as f:
+            for r in rows:
+                if r["name"] == n and r["auto"] == "False":
+                    f.write(f"{r['eps']} {r['frame_s']} {r['select_s']} {r['reconstruct_s']}\n")
+        with open(os.path.join(HERE, f"eps_{n}_auto.dat"), "w") as f:
+            for r in rows:
+                if r["name"] == n and r["auto"] == "True":
+                    f.write(f"{r['eps']} {r['frame_s']}\n")
+    plots = ", ".join(f"'eps_{n}.dat' using 1:2 with linespoints title '{n} total', "
+                      f"'eps_{n}.dat' using 1:3 with linespoints title '{n} box selection', "
+                      f"'eps_{n}.dat' using 1:4 with linespoints title '{n} reconstruction', "
+                      f"'eps_{n}_auto.dat' using 1:2 with points pt 7 ps 2 title '{n} --eps auto'" for n in names)
+    gnuplot(f"""set terminal pngcairo size 900,550
+set output 'eps.png'
+set logscale xy
+set xlabel 'depth accuracy eps'
+set ylabel 'seconds'
+set grid
+set key outside
+set title 'rzb: box selection vs reconstruction time (Fig. 7), 640x480'
+plot {plots}
+""")
+    for n in names:
+        os.remove(os.path.join(HERE, f"eps_{n}.dat"))
+        os.remove(os.path.join(HERE, f"eps_{n}_auto.dat"))
+
+
+# ---------------------------------------------------------------------------------------------
+def dynamic():
+    if not plot_only:
+        rows = bench("DynamicUpdates", {})
+        print(rows[0], flush=True)
+        write_csv("dynamic.csv", rows, ["city_triangles", "object_triangles", "rebuild_s", "insert_s", "remove_s",
+                                        "insert_remove_s", "us_per_triangle", "compact_s", "area_error",
+                                        "dirty_samples_per_s", "static_samples_per_s"],
+                  "library level (SampleTree), one thread; object: CGAL elephant.off")
+
+
+for s in studies:
+    globals()[s]()

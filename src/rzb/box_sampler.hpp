@@ -1,0 +1,149 @@
+#pragma once
+// Drawing the samples of one selected box (sections 5.2 and 7.3). Sample i of a box's n samples
+// takes the Philox numbers of (box key, i): u = (i + r) / n with r from the first two words (the
+// samples are stratified along the distribution list: each takes one equal-area stratum of the
+// box's slice, jittered), the other two give uniform barycentric coordinates (the unit square
+// folded onto the triangle). Inverting the slice's prefix sums at u picks the entry, so a triangle
+// gets its area's share of the samples (the integer part exactly, the rest by the jitter), and
+// the points inside a triangle stay independent and uniform: coverage is at least as good as
+// with independent picks (the coupon-collector bound still holds), and the picks of consecutive
+// samples move forward along the list, so the search is a walk from the previous position.
+// An instance entry continues the pick inside the child's whole list with the remainder of u
+// (fresh bits from (box key, i, level) once fewer than 16 are left), composing transforms.
+//
+// Philox is computed 4096 samples at a time (vectorized). The result goes to a sink as (position
+// in the box's node frame, a normal direction there that transforms like the triangle's normal,
+// expanded ID, leaf tree, mesh index). Hot loops are templates over the sink: no allocation,
+// virtual call or std::function per sample.
+#include <algorithm>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include "src/rzb/box_selection.hpp"
+#include "src/rzb/philox_stream.hpp"
+#include "src/rzb/sample_tree.hpp"
+
+namespace lzb::rzb {
+
+constexpr uint32_t kDrawBatch = 4096;
+
+// Philox words of samples [first, first + n) of a box (n <= kDrawBatch): w[k][i] is word k of
+// sample first + i. A per-thread buffer valid until the next call on this thread.
+struct DrawWords {
+  const uint32_t* w[4];
+};
+DrawWords batchDraws(const SampleStream& stream, uint64_t boxKey, uint64_t first, uint32_t n);
+
+// A sample on its way down through instance entries: the transform composed so far (child frame
+// -> box frame), the remainder of its pick number and that number's resolution.
+struct Descent {
+  glm::dmat3 A;
+  glm::dvec3 t;
+  double rem, res;
+  uint64_t id, index;
+  const SampleTree* tree;
+  uint32_t instance, level;
+  float a, c, sign;
+  bool linear;
+};
+
+// Enters d's instance entry and picks in the child's whole list. Returns true when that reached a
+// triangle: then p, n (box frame), d.id (complete), leaf and meshIndex are set.
+bool descendStep(Descent& d, const SampleStream& stream, uint64_t boxKey, glm::dvec3& p,
+                 glm::dvec3& n, const SampleTree*& leaf, uint32_t& meshIndex);
+
+// All levels for one sample.
+void descendInstance(const SampleTree* tree, uint32_t instance, double rem, double res,
+                     const SampleStream& stream, uint64_t boxKey, uint64_t index, float a, float b,
+                     glm::dvec3& p, glm::dvec3& n, uint64_t& id, const SampleTree*& leaf,
+                     uint32_t& meshIndex);
+
+// The first j in [from, e) with P[j] > target (e - 1 if none), from >= b: a forward gallop.
+inline uint64_t searchForward(const double* P, uint64_t e, uint64_t from, double target) {
+  if (P[from] > target) return from;
+  uint64_t lo = from + 1, hi, step = 1;
+  for (;;) {
+    if (lo >= e) return e - 1;
+    hi = e - lo > step ? lo + step : e;
+    if (P[hi - 1] > target || hi == e) break;
+    lo = hi;
+    step <<= 1;
+  }
+  // Branchless binary search in [lo, hi).
+  uint64_t n = hi - lo;
+  while (n > 1) {
+    const uint64_t h = n >> 1;
+    lo = P[lo + h - 1] <= target ? lo + h : lo;
+    n -= h;
+  }
+  return lo;
+}
+
+// Samples [first, first + count) of the `total` samples of box. Sink: void(const dvec3& p,
+// const dvec3& n, uint64_t id, const SampleTree* leaf, uint32_t meshIndex), and optionally
+// flush(), called after every batch of kDrawBatch samples.
+template <class Sink>
+void drawBoxSamples(const SelectedBox& box, const SampleStream& stream, uint64_t first,
+                    uint64_t count, uint64_t total, Sink& sink) {
+  if (!count) return;
+  const SampleTree& tree = *box.tree;
+  const EntryRec* recs = tree.recs();
+  const bool clean = tree.clean(box.node);
+  uint64_t b = 0, e = 0;
+  double base = 0.0, span = 0.0, top = 0.0;
+  const double* P = tree.prefix();
+  if (clean) {
+    tree.slice(box.node, box.part, b, e);
+    base = b ? P[b - 1] : 0.0;
+    top = P[e - 1];
+    span = top - base;
+  }
+  const double inv = 1.0 / double(total);
+  uint64_t j = b;
+  for (uint64_t s0 = first; s0 < first + count; s0 += kDrawBatch) {
+    const uint32_t n = uint32_t(std::min<uint64_t>(kDrawBatch, first + count - s0));
+    const DrawWords d = batchDraws(stream, box.key, s0, n);
+    for (uint32_t k = 0; k < n; ++k) {
+      const uint64_t i = s0 + k;
+      const double jitter = double((uint64_t(d.w[1][k]) << 21) ^ (d.w[0][k] >> 11)) * 0x1p-53;
+      const double u = std::min((double(i) + jitter) * inv, 1.0 - 0x1p-53);
+      // Fold the unit square onto the triangle without a branch (it would mispredict half the
+      // time): with m = 1, a + (1 - 2a) = 1 - a exactly for 24-bit a.
+      float a = unit24(d.w[2][k]), c = unit24(d.w[3][k]);
+      const float m = float(a + c > 1.0f);
+      a += m * (1.0f - 2.0f * a);
+      c += m * (1.0f - 2.0f * c);
+      double rem = 0.0, res = 0x1p-53;
+      if (clean) {
+        const double target = base + u * span;
+        j = searchForward(P, e, j, target);
+        if (recs[j].instance()) {
+          const double before = j ? P[j - 1] : 0.0, area = P[j] - before;
+          rem = area > 0.0 ? glm::clamp((target - before) / area, 0.0, 1.0 - 0x1p-53) : 0.5;
+          res = area > 0.0 ? (span * 0x1p-53 + top * 0x1p-52) / area : 1.0;
+        }
+      } else {
+        j = tree.pick(box.node, box.part, u, rem, res);
+      }
+      const EntryRec& r = recs[j];
+      if (!r.instance()) {
+        // In float, as exact as the vertices themselves; the transform to camera space is double.
+        const glm::vec3 p = r.v0 + a * r.e1 + c * r.e2;
+        sink(glm::dvec3(p), glm::dvec3(glm::cross(r.e1, r.e2)), box.idBase + r.ref, &tree, r.ref);
+      } else {
+        glm::dvec3 p, nrm;
+        uint64_t id = box.idBase;
+        const SampleTree* leaf;
+        uint32_t mi;
+        descendInstance(&tree, r.index(), rem, res, stream, box.key, i, a, c, p, nrm, id, leaf, mi);
+        sink(p, nrm, id, leaf, mi);
+      }
+    }
+    // A sink may buffer a batch (e.g. to splat it after the tree lookups, so the two working sets
+    // do not evict each other from the cache).
+    if constexpr (requires { sink.flush(); }) sink.flush();
+  }
+}
+
+}  // namespace lzb::rzb

@@ -1,0 +1,116 @@
+#include "src/rzb/rzb_method.hpp"
+
+#include <cmath>
+#include <memory>
+
+#include "src/core/error.hpp"
+#include "src/rzb/rzb_renderer.hpp"
+
+namespace lzb {
+
+namespace rzb {
+
+namespace {
+
+// A finite number, or an InputError naming the option.
+double number(const std::string& text, const std::string& option, const std::string& expected) {
+  size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  require(used == text.size() && used > 0 && std::isfinite(v), option,
+          "expected " + expected + ", got '" + text + "'");
+  return v;
+}
+
+}  // namespace
+
+RzbParams parseRzbOptions(const std::string& eps, double oversample, int splat,
+                          const std::string& fallback, const std::string& reconstruct,
+                          double areaRatio, double cacheMb, const std::string& backfaces) {
+  RzbParams p;
+  if (eps == "auto") {
+    p.autoEps = true;
+  } else {
+    p.eps = number(eps, "--eps", "a number > 1 or 'auto'");
+  }
+  p.oversample = oversample;
+  p.splat = splat;
+  if (fallback == "off") {
+    p.fallback = false;
+  } else if (fallback != "auto") {
+    p.fallbackPx = number(fallback, "--fallback", "'auto', 'off' or a pixel area > 0");
+    require(p.fallbackPx > 0.0, "--fallback", "must be > 0 pixels, got '" + fallback + "'");
+  }
+  if (reconstruct == "auto") {
+    p.reconstruct = splat > 1 ? Reconstruct::kSplat : Reconstruct::kPixel;
+  } else if (reconstruct == "pixel") {
+    p.reconstruct = Reconstruct::kPixel;
+  } else if (reconstruct == "splat") {
+    p.reconstruct = Reconstruct::kSplat;
+  } else if (reconstruct == "gauss") {
+    p.reconstruct = Reconstruct::kGauss;
+  } else {
+    throw InputError("--reconstruct: expected pixel, splat, gauss or auto, got '" + reconstruct + "'");
+  }
+  p.areaRatio = areaRatio;
+  p.cacheMb = cacheMb;
+  require(backfaces == "drop" || backfaces == "keep", "--backfaces",
+          "expected drop or keep, got '" + backfaces + "'");
+  p.dropBackfaces = backfaces == "drop";
+  p.validate();
+  return p;
+}
+
+}  // namespace rzb
+
+MethodPlugin rzbMethod() {
+  struct Storage {
+    std::string eps = "1.5", fallback = "auto", reconstruct = "auto", backfaces = "drop";
+    double oversample = 1.0, areaRatio = 4.0, cacheMb = 0.0;
+    int splat = 1;
+    rzb::RzbParams parsed;
+  };
+  auto s = std::make_shared<Storage>();
+  return MethodPlugin{
+      "rzb",
+      "approximate: randomized z-buffer point pass with z-buffer fallback and sample cache",
+      [s](CLI::App& app) {
+        app.add_option("--eps", s->eps,
+                       "rzb: depth accuracy eps > 1 (a box is selected when (zmax/zmin)^2 <= eps), "
+                       "or 'auto' (least modelled cost per frame)")
+            ->capture_default_str();
+        app.add_option("--oversample", s->oversample,
+                       "rzb: scales the ln(pixels) samples per pixel of projected area")
+            ->capture_default_str();
+        app.add_option("--splat", s->splat, "rzb: splat size d (d x d pixels; d^2 fewer samples)")
+            ->capture_default_str();
+        app.add_option("--fallback", s->fallback,
+                       "rzb: boxes whose triangles project above this many pixels are rasterized "
+                       "by the z-buffer: auto (d^2 / ln pixels), off, or a number")
+            ->capture_default_str();
+        app.add_option("--reconstruct", s->reconstruct,
+                       "rzb: pixel | splat | gauss (Gaussian average of visible samples, 10x "
+                       "samples) | auto (pixel for d = 1, else splat)")
+            ->capture_default_str();
+        app.add_option("--area-ratio", s->areaRatio, "rzb: area class width, 2..64")
+            ->capture_default_str();
+        app.add_option("--cache-mb", s->cacheMb, "rzb: sample cache budget in MiB (0: no cache)")
+            ->capture_default_str();
+        app.add_option("--backfaces", s->backfaces, "rzb: drop | keep samples on back faces")
+            ->capture_default_str();
+      },
+      [s] {
+        s->parsed = rzb::parseRzbOptions(s->eps, s->oversample, s->splat, s->fallback,
+                                         s->reconstruct, s->areaRatio, s->cacheMb, s->backfaces);
+      },
+      [s] { return s->parsed.toJson(); },
+      [s](const Scene& scene, const RenderOptions& options) -> std::unique_ptr<Renderer> {
+        return std::make_unique<rzb::RzbRenderer>(scene, options, s->parsed);
+      }};
+}
+
+}  // namespace lzb
