@@ -64,7 +64,7 @@ def idle_fraction(seconds=3.0):
     return (i1 - i0) / max(t1 - t0, 1)
 
 
-def wait_quiet(limit_s=900):
+def wait_quiet(limit_s=180):
     """The machine is shared (2 cores): start a measurement only when it is >= 85 % idle, so
     other jobs do not decide the result. Gives up after limit_s and says so."""
     import time
@@ -76,9 +76,9 @@ def wait_quiet(limit_s=900):
     print("warning: the machine stayed busy; measuring anyway", flush=True)
 
 
-def render(scene, args, frames, size=512, reference=True):
-    """Runs lzb render; returns (command line, report)."""
-    if not QUICK:
+def render(scene, args, frames, size=512, reference=True, timed=True):
+    """Runs lzb render; returns (command line, report). Timed runs wait for a quiet machine."""
+    if timed and not QUICK:
         wait_quiet()
     with tempfile.TemporaryDirectory() as out:
         cmd = [LZB, "render", scene, "--method", "lzb", *args, "--frames", str(frames),
@@ -385,7 +385,8 @@ def size():
     for family, scene in scenes:
         cmd, rep = render(scene, [], frames)
         commands.append(cmd)
-        cmd2, diag = render(scene, ["--lzb-depth-complexity", "32"], frames, reference=False)
+        cmd2, diag = render(scene, ["--lzb-depth-complexity", "32"], frames, reference=False,
+                            timed=False)
         commands.append(cmd2)
         row = summary(rep)
         row.update(family=family, scene=os.path.relpath(scene, ROOT) if os.path.exists(scene) else scene)

@@ -73,32 +73,38 @@ def gnuplot(script):
 
 # ---------------------------------------------------------------------------------------------
 def sensitivity():
-    ks = range(5, 12 if quick else 24)  # n = 2^k squares per side: 2 n^2 triangles
+    ks = list(range(5, 12 if quick else 24))  # n = 2^k squares per side: 2 n^2 triangles
+    passes = 1 if quick else 2
     rows = []
     if not plot_only:
-        for k in ks:
-            n = 2 ** k
-            rep = render(f"builtin:chessboard?n={n}", ["--method", "rzb", "--fallback", "off"])
-            fr = rep["frames"]
-            row = {"n": n, "triangles": rep["scene"]["triangles_expanded"],
-                   "median_frame_s": statistics.median(f["seconds"] for f in fr),
-                   "median_splat_s": statistics.median(f["stages"]["splat"] for f in fr),
-                   "median_select_s": statistics.median(f["stages"]["select"] for f in fr),
-                   "samples": statistics.median(f["counts"]["samples_drawn"] for f in fr),
-                   "boxes": statistics.median(f["counts"]["boxes_selected"] for f in fr),
-                   "setup_s": rep["setup_seconds"]}
-            rows.append(row)
-            print(f"chessboard n=2^{k:2d} {row['triangles']:>22,} tris {row['median_frame_s']:.3f} s "
-                  f"{row['samples']:.3g} samples", flush=True)
-        base = rows[0]["median_frame_s"]
+        # Passes over all sizes (interleaved, so machine drift hits every size alike); per size the
+        # best frame of all passes (the least disturbed by other work on the shared machine).
+        best = {}
+        for p in range(passes):
+            for k in ks:
+                n = 2 ** k
+                rep = render(f"builtin:chessboard?n={n}", ["--method", "rzb", "--fallback", "off"], frames=4)
+                fr = rep["frames"]
+                f = min(fr, key=lambda f: f["seconds"])
+                if n not in best or f["seconds"] < best[n]["min_frame_s"]:
+                    best[n] = {"n": n, "triangles": rep["scene"]["triangles_expanded"],
+                               "min_frame_s": f["seconds"], "splat_s": f["stages"]["splat"],
+                               "select_s": f["stages"]["select"], "samples": f["counts"]["samples_drawn"],
+                               "boxes": f["counts"]["boxes_selected"], "setup_s": rep["setup_seconds"]}
+                print(f"pass {p} chessboard n=2^{k:2d} {best[n]['triangles']:>22,} tris "
+                      f"{f['seconds']:.3f} s (best {best[n]['min_frame_s']:.3f})", flush=True)
+        rows = [best[2 ** k] for k in ks]
+        base = rows[0]["min_frame_s"]
         for r in rows:
-            r["ratio_to_smallest"] = r["median_frame_s"] / base
-        write_csv("sensitivity.csv", rows, ["n", "triangles", "median_frame_s", "ratio_to_smallest",
-                                            "median_splat_s", "median_select_s", "samples", "boxes", "setup_s"],
-                  "point pass only (--fallback off), median of 3 frames")
+            r["ratio_to_smallest"] = r["min_frame_s"] / base
+        write_csv("sensitivity.csv", rows, ["n", "triangles", "min_frame_s", "ratio_to_smallest", "splat_s",
+                                            "select_s", "samples", "boxes", "setup_s"],
+                  f"point pass only (--fallback off), best of 4 frames x {passes} passes")
     rows = read_csv("sensitivity.csv")
-    ratio = max(float(r["median_frame_s"]) for r in rows) / float(rows[0]["median_frame_s"])
-    print(f"output sensitivity: largest / smallest frame time = {ratio:.2f}")
+    ratio = float(rows[-1]["min_frame_s"]) / float(rows[0]["min_frame_s"])
+    spread = max(float(r["min_frame_s"]) for r in rows) / min(float(r["min_frame_s"]) for r in rows)
+    print(f"output sensitivity: largest / smallest scene frame time = {ratio:.2f} "
+          f"(max / min over all sizes {spread:.2f})")
     gnuplot(f"""set terminal pngcairo size 800,500
 set output 'sensitivity.png'
 set datafile separator ','
@@ -107,8 +113,8 @@ set xlabel 'triangles (chessboard, instanced above 2^13)'
 set ylabel 'frame time (s)'
 set yrange [0:*]
 set grid
-set title 'rzb point pass (--fallback off), 640x480: largest/smallest = {ratio:.2f}'
-plot 'sensitivity.csv' skip 2 using 2:3 with linespoints title 'frame', '' skip 2 using 2:5 with linespoints title 'splat'
+set title 'rzb point pass (--fallback off), 640x480: largest/smallest scene = {ratio:.2f}'
+plot 'sensitivity.csv' skip 2 using 2:3 with linespoints title 'frame (best)', '' skip 2 using 2:5 with linespoints title 'splat'
 """)
 
 

@@ -36,10 +36,16 @@ bool descendStep(Descent& d, const SampleStream& stream, uint64_t boxKey, glm::d
   tree = r.child;
   d.tree = tree;
   if (d.res > 0x1p-16) {
-    // Too few bits of the first number are left: fresh ones for this level.
-    const auto w = stream.draw(boxKey, d.index, kRefreshDraw + (++d.level & 0xff));
-    d.rem = unit53(w[0], w[1]);
-    d.res = 0x1p-53;
+    // Too few bits of the pick number are left: the sample's spare word, then fresh Philox draws.
+    if (d.level == 0) {
+      d.rem = (double(d.spare) + 0.5) * 0x1p-32;
+      d.res = 0x1p-32;
+      d.level = 1;
+    } else {
+      const auto w = stream.draw(boxKey, d.index, kRefreshDraw + (d.level++ & 0xff));
+      d.rem = unit53(w[0], w[1]);
+      d.res = 0x1p-53;
+    }
   }
   // The whole-list pick: the alias table when the tree has one (O(1), no division).
   uint32_t pos, ref;
@@ -83,11 +89,11 @@ bool descendStep(Descent& d, const SampleStream& stream, uint64_t boxKey, glm::d
 }
 
 void descendInstance(const SampleTree* tree, uint32_t instance, double rem, double res,
-                     const SampleStream& stream, uint64_t boxKey, uint64_t index, float a, float b,
-                     glm::dvec3& p, glm::dvec3& n, uint64_t& id, const SampleTree*& leaf,
-                     uint32_t& meshIndex) {
-  Descent d{glm::dmat3(1.0), glm::dvec3(0.0), rem, res, id, index, tree, instance, 0, a, b, 1.0f,
-            false};
+                     uint32_t spare, const SampleStream& stream, uint64_t boxKey, uint64_t index,
+                     float a, float b, glm::dvec3& p, glm::dvec3& n, uint64_t& id,
+                     const SampleTree*& leaf, uint32_t& meshIndex) {
+  Descent d{glm::dmat3(1.0), glm::dvec3(0.0), rem, res, id, index, tree, instance, 0, spare, a, b,
+            1.0f, false};
   while (!descendStep(d, stream, boxKey, p, n, leaf, meshIndex)) {
   }
   id = d.id;

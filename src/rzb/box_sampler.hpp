@@ -1,15 +1,16 @@
 #pragma once
 // Drawing the samples of one selected box (sections 5.2 and 7.3). Sample i of a box's n samples
-// takes the Philox numbers of (box key, i): u = (i + r) / n with r from the first two words (the
+// takes the Philox numbers of (box key, i): u = (i + r) / n with r from the first word (the
 // samples are stratified along the distribution list: each takes one equal-area stratum of the
-// box's slice, jittered), the other two give uniform barycentric coordinates (the unit square
+// box's slice, jittered), words 2 and 3 give uniform barycentric coordinates (the unit square
 // folded onto the triangle). Inverting the slice's prefix sums at u picks the entry, so a triangle
 // gets its area's share of the samples (the integer part exactly, the rest by the jitter), and
 // the points inside a triangle stay independent and uniform: coverage is at least as good as
 // with independent picks (the coupon-collector bound still holds), and the picks of consecutive
 // samples move forward along the list, so the search is a walk from the previous position.
 // An instance entry continues the pick inside the child's whole list with the remainder of u
-// (fresh bits from (box key, i, level) once fewer than 16 are left), composing transforms.
+// (once fewer than 16 bits are left: the sample's spare Philox word, then fresh draws keyed by
+// (box key, i, level)), composing transforms.
 //
 // Philox is computed 4096 samples at a time (vectorized). The result goes to a sink as (position
 // in the box's node frame, a normal direction there that transforms like the triangle's normal,
@@ -44,6 +45,7 @@ struct Descent {
   uint64_t id, index;
   const SampleTree* tree;
   uint32_t instance, level;
+  uint32_t spare;  // a fresh 32-bit word for the first refresh (the sample's Philox word 1)
   float a, c, sign;
   bool linear;
 };
@@ -53,9 +55,10 @@ struct Descent {
 bool descendStep(Descent& d, const SampleStream& stream, uint64_t boxKey, glm::dvec3& p,
                  glm::dvec3& n, const SampleTree*& leaf, uint32_t& meshIndex);
 
-// All levels for one sample.
+// All levels for one sample. spare: an unused 32-bit word of the sample's Philox numbers.
 void descendInstance(const SampleTree* tree, uint32_t instance, double rem, double res,
-                     const SampleStream& stream, uint64_t boxKey, uint64_t index, float a, float b,
+                     uint32_t spare, const SampleStream& stream, uint64_t boxKey, uint64_t index,
+                     float a, float b,
                      glm::dvec3& p, glm::dvec3& n, uint64_t& id, const SampleTree*& leaf,
                      uint32_t& meshIndex);
 
@@ -106,7 +109,8 @@ void drawBoxSamples(const SelectedBox& box, const SampleStream& stream, uint64_t
     const DrawWords d = batchDraws(stream, box.key, s0, n);
     for (uint32_t k = 0; k < n; ++k) {
       const uint64_t i = s0 + k;
-      const double jitter = double((uint64_t(d.w[1][k]) << 21) ^ (d.w[0][k] >> 11)) * 0x1p-53;
+      // 32 bits of jitter are ample inside a stratum; word 1 stays spare for a deep descent.
+      const double jitter = (double(d.w[0][k]) + 0.5) * 0x1p-32;
       const double u = std::min((double(i) + jitter) * inv, 1.0 - 0x1p-53);
       // Fold the unit square onto the triangle without a branch (it would mispredict half the
       // time): with m = 1, a + (1 - 2a) = 1 - a exactly for 24-bit a.
@@ -114,14 +118,15 @@ void drawBoxSamples(const SelectedBox& box, const SampleStream& stream, uint64_t
       const float m = float(a + c > 1.0f);
       a += m * (1.0f - 2.0f * a);
       c += m * (1.0f - 2.0f * c);
-      double rem = 0.0, res = 0x1p-53;
+      double rem = 0.0, res = 0x1p-32 * inv;
       if (clean) {
         const double target = base + u * span;
         j = searchForward(P, e, j, target);
         if (recs[j].instance()) {
           const double before = j ? P[j - 1] : 0.0, area = P[j] - before;
-          rem = area > 0.0 ? glm::clamp((target - before) / area, 0.0, 1.0 - 0x1p-53) : 0.5;
-          res = area > 0.0 ? (span * 0x1p-53 + top * 0x1p-52) / area : 1.0;
+          const double ia = area > 0.0 ? 1.0 / area : 0.0;
+          rem = area > 0.0 ? glm::clamp((target - before) * ia, 0.0, 1.0 - 0x1p-53) : 0.5;
+          res = area > 0.0 ? (span * res + top * 0x1p-52) * ia : 1.0;
         }
       } else {
         j = tree.pick(box.node, box.part, u, rem, res);
@@ -136,7 +141,8 @@ void drawBoxSamples(const SelectedBox& box, const SampleStream& stream, uint64_t
         uint64_t id = box.idBase;
         const SampleTree* leaf;
         uint32_t mi;
-        descendInstance(&tree, r.index(), rem, res, stream, box.key, i, a, c, p, nrm, id, leaf, mi);
+        descendInstance(&tree, r.index(), rem, res, d.w[1][k], stream, box.key, i, a, c, p, nrm, id,
+                        leaf, mi);
         sink(p, nrm, id, leaf, mi);
       }
     }

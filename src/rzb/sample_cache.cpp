@@ -96,7 +96,7 @@ std::vector<CachedSample> buildSampleSet(const SelectedBox& box, int level, uint
 
 const std::vector<CachedSample>* SampleCache::lookup(uint64_t key, int level, uint64_t frame) {
   const auto it = map_.find(key);
-  if (it == map_.end() || (it->second.level != level && it->second.level != level + 1)) {
+  if (it == map_.end() || it->second.level != level) {
     ++counts_.misses;
     return nullptr;
   }

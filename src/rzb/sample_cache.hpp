@@ -4,10 +4,12 @@
 // for pixels-per-unit up to 2^(L/2)) from a stream that does not depend on the frame, without
 // back-face culling, quantized to a 3D grid in the box's frame whose cells project to at most one
 // pixel (one splat) per side at that density (so at most sqrt(3) along the diagonal): each cell
-// that received samples keeps one point at its centre, with the ID and normal of its first sample. A set is reused while the required level is L or L - 1 (the density
-// within a factor 2), and sets are evicted least-recently-used beyond a byte budget.
+// that received samples keeps one point at its centre, with the ID and normal of its first sample.
+// A set is reused while the box needs the same level (its density within a factor 2 of the
+// required one), and sets are evicted least-recently-used beyond a byte budget.
 //
-// Because a set depends only on (seed, box, level), a rank or frame that rebuilds it gets the same
+// Because the set a box uses depends only on (seed, box, level), never on which sets happen to
+// be cached (so no hysteresis between levels), a rank or frame that rebuilds it gets the same
 // samples as one that finds it cached: caching changes speed, never the image.
 #include <cstdint>
 #include <list>
@@ -46,7 +48,7 @@ class SampleCache {
  public:
   explicit SampleCache(uint64_t budgetBytes) : budget_(budgetBytes) {}
 
-  // The set of box `key` valid at `level` (built at level or level + 1), or null. Marks it used.
+  // The set of box `key` built at `level`, or null. Marks it used.
   const std::vector<CachedSample>* lookup(uint64_t key, int level, uint64_t frame);
   // Stores a set built at level (replacing the box's older one), evicting least-recently-used
   // sets not used in this frame. Returns the stored set, or null (set left as it was) when it
