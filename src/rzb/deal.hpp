@@ -15,7 +15,7 @@ namespace lzb::rzb {
 // selection. Fixed constants, so that every rank computes the same deal and the same eps.
 constexpr double kSampleSeconds = 12e-9;
 constexpr double kTriangleSeconds = 110e-9;
-constexpr double kNodeSeconds = 150e-9;
+constexpr double kNodeSeconds = 600e-9;
 
 double boxCost(const SelectedBox& box);
 

@@ -35,10 +35,11 @@ EpsSearch searchEps(const SampleScene& scene, const Camera& camera, const Select
   double lo = xMin, hi = xMax;
   int iterations = 9;
   if (previous > 1.0) {
+    // Later frames: a narrow bracket around the last eps, the minimum moves little per frame.
     const double x = std::log(previous - 1.0);
-    lo = std::max(xMin, x - 0.7);
-    hi = std::min(xMax, x + 0.7);
-    iterations = 5;
+    lo = std::max(xMin, x - 0.5);
+    hi = std::min(xMax, x + 0.5);
+    iterations = 2;
   }
   // Start from the wide end: large eps is cheap to select, so it sets a bound early.
   const double g = 0.5 * (std::sqrt(5.0) - 1.0);

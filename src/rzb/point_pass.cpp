@@ -324,11 +324,10 @@ struct GaussSink {
 PassCounts gaussAccumulate(std::span<const SplatJob> jobs, std::span<const SelectedBox> boxes,
                            const SampleStream& stream, const SplatSetup& setup,
                            const std::vector<float>& depth, const Scene& scene,
-                           const glm::dvec3& eye, std::vector<uint64_t>& accum, int threads) {
+                           std::vector<uint64_t>& accum, int threads) {
   accum.assign(4 * size_t(setup.width) * size_t(setup.height), 0);
   uint64_t drawn = 0, back = 0, splatted = 0;
   const long n = long(jobs.size());
-  (void)eye;
 #pragma omp parallel num_threads(threads) reduction(+ : drawn, back, splatted)
   {
     GaussSink g{setup, depth, accum.data(), lightDirection(scene.light), float(scene.light.ambient),

@@ -88,7 +88,7 @@ PassCounts splatJobs(std::span<const SplatJob> jobs, std::span<const SelectedBox
 PassCounts gaussAccumulate(std::span<const SplatJob> jobs, std::span<const SelectedBox> boxes,
                            const SampleStream& stream, const SplatSetup& setup,
                            const std::vector<float>& depth, const Scene& scene,
-                           const glm::dvec3& eye, std::vector<uint64_t>& accum, int threads);
+                           std::vector<uint64_t>& accum, int threads);
 
 // The atomic-min scatter limit: random 64-bit atomic minima into a width x height buffer, per
 // second, on `threads` threads for about `seconds`.

@@ -1,4 +1,5 @@
-// Benchmarks run by runs/rzb/run.py (disabled in ctest: run with --gtest_also_run_disabled_tests).
+// Benchmarks run by runs/rzb/run.py, only with LZB_BENCH=1 (skipped in ctest), e.g.
+//   LZB_BENCH=1 RZB_BENCH_SCENE=builtin:city build/src/rzb_test --gtest_filter='RzbBench.Table1'
 // Each prints one JSON line starting with "BENCH ".
 #include <gtest/gtest.h>
 
@@ -29,6 +30,11 @@ double cpuSeconds() {
   return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
 
+bool benchEnabled() {
+  const char* v = std::getenv("LZB_BENCH");
+  return v && std::string(v) == "1";
+}
+
 int benchThreads() {
   const char* t = std::getenv("RZB_BENCH_THREADS");
   return t ? std::atoi(t) : 2;
@@ -36,7 +42,8 @@ int benchThreads() {
 
 // The point pass's parts on one scene: draws only, draws + list search, the whole splat; and the
 // atomic-min scatter limit measured in the same process.
-TEST(RzbBench, DISABLED_PointPassParts) {
+TEST(RzbBench, PointPassParts) {
+  if (!benchEnabled()) GTEST_SKIP() << "set LZB_BENCH=1";
   const char* spec = std::getenv("RZB_BENCH_SCENE");
   const Scene scene = loadScene(spec ? spec : "builtin:chessboard?n=64", true);
   const int threads = benchThreads();
@@ -149,7 +156,8 @@ Scene flattened(const Scene& scene) {
 
 // Section 8.4: a ~5,800-triangle object inserted into a 1.2 M triangle city one triangle at a
 // time and removed again, against rebuilding the tree; and sampling speed while dirty.
-TEST(RzbBench, DISABLED_DynamicUpdates) {
+TEST(RzbBench, DynamicUpdates) {
+  if (!benchEnabled()) GTEST_SKIP() << "set LZB_BENCH=1";
   Scene scene = flattened(loadScene("builtin:city?blocks=10", true));
   const uint32_t cityTriangles = uint32_t(scene.nodes[0].mesh.size());
   const std::string path = realMesh("elephant.off");
@@ -232,7 +240,8 @@ Camera walkCamera(const Scene& scene, int frame, double step, int width, int hei
 
 // Table 1 analogue: per scene and splat size, the frame time with a new sample set and with the
 // cache (same view, warm), the z-buffer's time, and accuracy against it.
-TEST(RzbBench, DISABLED_Table1) {
+TEST(RzbBench, Table1) {
+  if (!benchEnabled()) GTEST_SKIP() << "set LZB_BENCH=1";
   const char* spec = std::getenv("RZB_BENCH_SCENE");
   ASSERT_TRUE(spec) << "set RZB_BENCH_SCENE";
   const Scene scene = loadScene(spec, true);
@@ -290,7 +299,8 @@ TEST(RzbBench, DISABLED_Table1) {
 }
 
 // Section 8.5: an 80-frame walkthrough with and without the cache (starting empty).
-TEST(RzbBench, DISABLED_CacheWalkthrough) {
+TEST(RzbBench, CacheWalkthrough) {
+  if (!benchEnabled()) GTEST_SKIP() << "set LZB_BENCH=1";
   const char* spec = std::getenv("RZB_BENCH_SCENE");
   ASSERT_TRUE(spec) << "set RZB_BENCH_SCENE";
   const char* stepEnv = std::getenv("RZB_BENCH_STEP");
@@ -323,7 +333,8 @@ TEST(RzbBench, DISABLED_CacheWalkthrough) {
 }
 
 // Fig. 7: box selection and reconstruction time against eps, and where --eps auto lands.
-TEST(RzbBench, DISABLED_EpsCurve) {
+TEST(RzbBench, EpsCurve) {
+  if (!benchEnabled()) GTEST_SKIP() << "set LZB_BENCH=1";
   const char* spec = std::getenv("RZB_BENCH_SCENE");
   ASSERT_TRUE(spec) << "set RZB_BENCH_SCENE";
   const Scene scene = loadScene(spec, true);

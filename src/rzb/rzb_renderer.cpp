@@ -163,8 +163,8 @@ void RzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
   shadeFromIds(scene_, camera, fb);
   if (params_.reconstruct == Reconstruct::kGauss && !mine.empty()) {
     std::vector<uint64_t> accum;
-    const PassCounts gc = gaussAccumulate(jobs, sel.boxes, *splatStream, setup, fb.depth, scene_,
-                                          camera.position(), accum, threads);
+    const PassCounts gc =
+        gaussAccumulate(jobs, sel.boxes, *splatStream, setup, fb.depth, scene_, accum, threads);
     const long n = long(fb.size());
 #pragma omp parallel for schedule(static) num_threads(threads)
     for (long i = 0; i < n; ++i) {

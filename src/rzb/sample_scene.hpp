@@ -6,8 +6,8 @@
 //
 // Instance flattening: an instance of a node that has no triangles (only instances) is replaced
 // by that node's instances, composed, while the tree stays under TreeParams::flattenBudget
-// entries. Nested 2 x 2 instancing (the chessboard) then costs one instance level per ~3 levels of
-// the scene graph when a sample descends, with every list small enough to stay in cache.
+// entries. Nested 2 x 2 instancing (the chessboard) then costs one instance level per 6 levels of
+// the scene graph when a sample descends.
 //
 // Dynamic updates go through here so that a change inside an instanced tree reaches the instance
 // entries of every tree that references it.

@@ -44,7 +44,7 @@ struct TreeParams {
   int maxDepth = 40;
   // Instance flattening (sample_scene.hpp): a tree takes its triangle-less children's instances
   // in place of them while it stays under this many entries.
-  size_t flattenBudget = 256;
+  size_t flattenBudget = 4096;
 };
 
 // A list entry as the sampler reads it.
