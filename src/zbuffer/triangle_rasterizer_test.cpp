@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "src/core/test_camera.hpp"
 #include "src/zbuffer/mesh_buffers.hpp"
 
 namespace lzb {
@@ -20,12 +21,7 @@ const Rgba8 kGrey = packRgba8(180, 180, 180);
 
 Camera makeCamera(const glm::dvec3& position, const glm::dvec3& lookAt, double n, double f,
                   int width = 96, int height = 72) {
-  CameraSpec spec;
-  spec.position = position;
-  spec.lookAt = lookAt;
-  spec.nearPlane = n;
-  spec.farPlane = f;
-  return Camera(spec, width, height);
+  return testing_util::lookAtCamera(position, lookAt, n, f, width, height);
 }
 
 // count random triangles in a cube of side `extent` around the origin, edges about `size`.

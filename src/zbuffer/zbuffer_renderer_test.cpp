@@ -11,6 +11,7 @@
 #include <set>
 
 #include "src/core/shading.hpp"
+#include "src/core/test_camera.hpp"
 
 namespace lzb {
 namespace {
@@ -19,12 +20,7 @@ const Rgba8 kGrey = packRgba8(180, 180, 180);
 
 Camera makeCamera(const glm::dvec3& position, const glm::dvec3& lookAt, double n, double f,
                   int width = 80, int height = 60) {
-  CameraSpec spec;
-  spec.position = position;
-  spec.lookAt = lookAt;
-  spec.nearPlane = n;
-  spec.farPlane = f;
-  return Camera(spec, width, height);
+  return testing_util::lookAtCamera(position, lookAt, n, f, width, height);
 }
 
 Framebuffer render(const Scene& scene, const Camera& camera, WorkShare share = {},
