@@ -63,21 +63,11 @@ void intersectPacket(const RTCIntersectFunctionNArguments* args, const UserChild
   DoubleRay rays[N];
   uint64_t ids[N];
   for (int k = 0; k < N; ++k) {
-    valid[k] = args->valid[k] == -1 ? -1 : 0;
-    rays[k] = valid[k] ? toChild(c, context->rays[RTCRayN_id(ray, N, unsigned(k))])
-                       : DoubleRay{glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0)};
-    p.ray.org_x[k] = float(rays[k].org.x), p.ray.org_y[k] = float(rays[k].org.y);
-    p.ray.org_z[k] = float(rays[k].org.z);
-    p.ray.dir_x[k] = float(rays[k].dir.x), p.ray.dir_y[k] = float(rays[k].dir.y);
-    p.ray.dir_z[k] = float(rays[k].dir.z);
-    p.ray.tnear[k] = valid[k] ? RTCRayN_tnear(ray, N, unsigned(k)) : 0.0f;
-    p.ray.tfar[k] = valid[k] ? RTCRayN_tfar(ray, N, unsigned(k)) : -INFINITY;
-    p.ray.time[k] = 0.0f;
-    p.ray.mask[k] = ~0u;
-    p.ray.id[k] = unsigned(k);
-    p.ray.flags[k] = 0;
-    p.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-    p.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    const bool active = args->valid[k] == -1;
+    rays[k] = active ? toChild(c, context->rays[RTCRayN_id(ray, N, unsigned(k))])
+                     : DoubleRay{glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0)};
+    setPacketLane(p, valid, k, active, rays[k], active ? RTCRayN_tnear(ray, N, unsigned(k)) : 0.0f,
+                  active ? RTCRayN_tfar(ray, N, unsigned(k)) : -INFINITY);
     ids[k] = kMiss;
   }
   IdContext sub;
@@ -85,12 +75,7 @@ void intersectPacket(const RTCIntersectFunctionNArguments* args, const UserChild
   sub.ctx.flags = args->context->flags;
   sub.rays = rays;
   sub.ids = ids;
-  if constexpr (N == 16)
-    rtcIntersect16(valid, c.child->scene, &sub.ctx, reinterpret_cast<RTCRayHit16*>(&p));
-  else if constexpr (N == 8)
-    rtcIntersect8(valid, c.child->scene, &sub.ctx, reinterpret_cast<RTCRayHit8*>(&p));
-  else
-    rtcIntersect4(valid, c.child->scene, &sub.ctx, reinterpret_cast<RTCRayHit4*>(&p));
+  intersectPacketN<N>(valid, c.child->scene, &sub.ctx, p);
   for (int k = 0; k < N; ++k) {
     if (!valid[k]) continue;
     const uint64_t id = decode(*c.child, p.hit.geomID[k], p.hit.primID[k], ids[k]);

@@ -73,4 +73,37 @@ void setRayHit(RTCRayHit& rh, const DoubleRay& ray, float tnear, float tfar);
 // expanded ID relative to the level's node, or kMiss; rh.ray.tfar is the hit distance.
 uint64_t intersect1(const Level& level, RTCRayHit& rh, const DoubleRay& ray);
 
+// Lane k of a packet: the float copy of `ray` from tnear to tfar (an inactive lane: pass
+// tfar = -inf), lane id k, a reset hit; valid[k] = -1 (active) or 0.
+template <int N>
+void setPacketLane(RTCRayHitNt<N>& p, int* valid, int k, bool active, const DoubleRay& ray,
+                   float tnear, float tfar) {
+  valid[k] = active ? -1 : 0;
+  p.ray.org_x[k] = float(ray.org.x), p.ray.org_y[k] = float(ray.org.y);
+  p.ray.org_z[k] = float(ray.org.z);
+  p.ray.dir_x[k] = float(ray.dir.x), p.ray.dir_y[k] = float(ray.dir.y);
+  p.ray.dir_z[k] = float(ray.dir.z);
+  p.ray.tnear[k] = tnear;
+  p.ray.tfar[k] = tfar;
+  p.ray.time[k] = 0.0f;
+  p.ray.mask[k] = ~0u;
+  p.ray.id[k] = unsigned(k);
+  p.ray.flags[k] = 0;
+  p.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+  p.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+}
+
+// rtcIntersect4/8/16 on a packet of native width N.
+template <int N>
+void intersectPacketN(int* valid, RTCScene scene, RTCIntersectContext* context,
+                      RTCRayHitNt<N>& p) {
+  static_assert(N == 4 || N == 8 || N == 16);
+  if constexpr (N == 16)
+    rtcIntersect16(valid, scene, context, reinterpret_cast<RTCRayHit16*>(&p));
+  else if constexpr (N == 8)
+    rtcIntersect8(valid, scene, context, reinterpret_cast<RTCRayHit8*>(&p));
+  else
+    rtcIntersect4(valid, scene, context, reinterpret_cast<RTCRayHit4*>(&p));
+}
+
 }  // namespace lzb::embree

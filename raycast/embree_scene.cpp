@@ -215,20 +215,9 @@ void intersectPacket(const Level& root, const DoubleRay* rays, const Ray* src, s
   uint64_t ids[N];
   for (int k = 0; k < N; ++k) {
     const bool active = size_t(k) < count;
-    const DoubleRay& r = rays[active ? k : 0];
-    valid[k] = active ? -1 : 0;
-    p.ray.org_x[k] = float(r.org.x), p.ray.org_y[k] = float(r.org.y),
-    p.ray.org_z[k] = float(r.org.z);
-    p.ray.dir_x[k] = float(r.dir.x), p.ray.dir_y[k] = float(r.dir.y),
-    p.ray.dir_z[k] = float(r.dir.z);
-    p.ray.tnear[k] = active ? std::max(roundDown(src[k].tnear), 0.0f) : 0.0f;
-    p.ray.tfar[k] = active ? roundUp(src[k].tfar) : -INFINITY;
-    p.ray.time[k] = 0.0f;
-    p.ray.mask[k] = ~0u;
-    p.ray.id[k] = unsigned(k);
-    p.ray.flags[k] = 0;
-    p.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-    p.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    embree::setPacketLane(p, valid, k, active, rays[active ? k : 0],
+                          active ? std::max(roundDown(src[k].tnear), 0.0f) : 0.0f,
+                          active ? roundUp(src[k].tfar) : -INFINITY);
     ids[k] = embree::kMiss;
   }
   embree::IdContext context;
@@ -236,12 +225,7 @@ void intersectPacket(const Level& root, const DoubleRay* rays, const Ray* src, s
   context.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   context.rays = rays;
   context.ids = ids;
-  if constexpr (N == 16)
-    rtcIntersect16(valid, root.scene, &context.ctx, reinterpret_cast<RTCRayHit16*>(&p));
-  else if constexpr (N == 8)
-    rtcIntersect8(valid, root.scene, &context.ctx, reinterpret_cast<RTCRayHit8*>(&p));
-  else
-    rtcIntersect4(valid, root.scene, &context.ctx, reinterpret_cast<RTCRayHit4*>(&p));
+  embree::intersectPacketN<N>(valid, root.scene, &context.ctx, p);
   for (size_t k = 0; k < count; ++k) {
     const uint64_t id = embree::decode(root, p.hit.geomID[k], p.hit.primID[k], ids[k]);
     hits[k] = id == embree::kMiss ? RayHit{} : RayHit{p.ray.tfar[k], id};

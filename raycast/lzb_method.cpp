@@ -12,7 +12,7 @@ namespace {
 // The option values as typed, and the validated settings (owned by the plugin).
 struct LzbArgs {
   std::string stage = "final";
-  std::string plane = "auto";
+  std::string plane = "cost";
   std::string occluderMode = "dynamic";
   std::string walk;  // empty: the stage's own
   LzbOptions options;
@@ -33,10 +33,10 @@ void addOptions(CLI::App& c) {
                "lzb: partition plane: auto (coarse ray casting, mean depth), cost (coarse ray "
                "casting, cost model) or a fraction F in (0, 1) of the frustum depth")
       ->capture_default_str();
-  c.add_option("--plane-grid", o.planeGrid, "lzb: coarse rays for --plane auto: N x N pixels")
+  c.add_option("--plane-grid", o.planeGrid, "lzb: coarse rays of the dynamic planes (auto, cost): N x N pixels")
       ->capture_default_str();
   c.add_option("--plane-reuse", o.planeReuse,
-               "lzb: frames an auto plane may be reused while still valid (0: never)")
+               "lzb: frames a dynamic plane may be reused while still valid (0: never)")
       ->capture_default_str();
   c.add_option("--occluders", o.occluders, "lzb: K static local occluders per octree leaf")
       ->capture_default_str();

@@ -25,7 +25,7 @@ enum class OctreeWalk { kTopDown, kCoherent };
 struct LzbOptions {
   LzbStage stage = LzbStage::kFinal;
   double planeFraction = 0.0;  // 0: dynamic plane (coarse ray casting); else static, in (0, 1)
-  bool costPlane = false;      // dynamic: the cost-model plane instead of the mean (LZB.md)
+  bool costPlane = true;       // dynamic: the cost-model plane (default) instead of the mean
   int planeGrid = 32;          // coarse rays: planeGrid x planeGrid uniform pixel grid
   int planeReuse = 8;          // frames a dynamic plane may be reused (0: recompute every frame)
   int occluders = 5;           // K static local occluders per leaf (the paper's setting)

@@ -44,6 +44,7 @@ TEST(LzbOptions, UnknownNamesNameTheOptionAndTheChoices) {
 
 TEST(LzbOptions, PlaneIsAutoCostOrAFractionStrictlyInside01) {
   LzbOptions o;
+  EXPECT_TRUE(o.dynamicPlane() && o.costPlane);  // the default: the cost plane (LZB.md)
   parsePlane("auto", "--plane", o);
   EXPECT_TRUE(o.dynamicPlane());
   EXPECT_FALSE(o.costPlane);

@@ -4,9 +4,10 @@
 // Per frame: (1) hierarchical frustum culling of the octrees; (2) the partition plane z_clip;
 // (3) the near scene (culled leaves in front of the plane) by z-buffer clipped at z_clip;
 // (4) the unfinished pixels (left empty by the near pass); (5) the far scene by the chosen stage:
-// naive Embree rays, or PVL finding by the own octree walk (lazy / selective / OOR / final) and
-// the PVL by z-buffer into a second pass; the passes are combined with compositeNearer; colour by
-// shadeFromIds.
+// naive Embree rays (combined with the near pass by compositeNearer), or PVL finding by the own
+// octree walk (lazy / selective / OOR / final) and the PVL drawn unclipped into the near pass's
+// z-buffer (near scene first, so on an exact depth tie between two triangles the near one stays);
+// colour by shadeFromIds.
 //
 // Ranks: every rank renders the near pass (cheap) and so knows the unfinished pixels and keeps
 // the same plane state; each casts rays only in its screen tiles (tile % size == rank) and draws

@@ -22,7 +22,7 @@ namespace lzb::gl {
   X(UseProgram) X(GetUniformLocation) X(UniformMatrix4fv) X(Uniform2ui) X(Uniform1f)           \
   X(GenVertexArrays) X(DeleteVertexArrays) X(BindVertexArray) X(GenBuffers) X(DeleteBuffers)    \
   X(BindBuffer) X(BufferData) X(EnableVertexAttribArray) X(VertexAttribPointer) X(DrawArrays)     \
-  X(DrawElements)
+  X(DrawElements) X(Flush)
 // clang-format on
 
 struct Api {

@@ -188,10 +188,25 @@ void TriangleRasterizer::drawList(uint32_t node, const glm::dmat4& world,
   counts_.triangles += triangles.size();
 }
 
+void TriangleRasterizer::flush() {
+  impl_->require("flush");
+  gl::api().Flush();
+}
+
 void TriangleRasterizer::end(Framebuffer& fb) {
   Impl& r = *impl_;
   r.require("end");
   r.drawing = false;
+  readInto(fb);
+}
+
+void TriangleRasterizer::read(Framebuffer& fb) {
+  impl_->require("read");
+  readInto(fb);
+}
+
+void TriangleRasterizer::readInto(Framebuffer& fb) {
+  Impl& r = *impl_;
   gl::api().Finish();
   gl::check("drawing the z-buffer");
   Stopwatch readback;
@@ -212,7 +227,7 @@ void TriangleRasterizer::end(Framebuffer& fb) {
       fb.depth[i] = id == kNoId ? kEmptyDepth : depth[j] * unscale;
     }
   }
-  counts_.readbackSeconds = readback.seconds();
+  counts_.readbackSeconds += readback.seconds();
 }
 
 }  // namespace lzb

@@ -27,7 +27,7 @@ struct RasterCounts {
   uint64_t triangles = 0;  // triangles handed to GL since begin()
   uint64_t drawCalls = 0;
   double uploadSeconds = 0.0;    // first-use uploads of node meshes since begin()
-  double readbackSeconds = 0.0;  // end()'s reading and converting, after GL has finished
+  double readbackSeconds = 0.0;  // end()'s and read()'s reading and converting, after GL
 };
 
 class TriangleRasterizer {
@@ -56,15 +56,26 @@ class TriangleRasterizer {
   // order within each), so an ascending list is always drawn in its order.
   void drawList(uint32_t node, const glm::dmat4& world, std::span<const uint32_t> triangles,
                 uint64_t idBase);
+  // Hands what was drawn so far to llvmpipe's rasterizer threads without waiting, so they work
+  // while the caller goes on drawing (otherwise a pass that does not fill llvmpipe's bins is only
+  // rasterized in end()). Changes nothing in the result.
+  void flush();
   // Waits for GL, reads IDs and depths into fb (sized to the camera; row 0 = top; colour is left
   // to the caller, e.g. shadeFromIds). Pixels no triangle covered get kNoId / kEmptyDepth.
   void end(Framebuffer& fb);
+  // Like end(), but the pass set stays open: later draws go on into the same buffers (depth test
+  // against what is there), e.g. a pass drawn on top of a clipped one read here first. counts()
+  // keep accumulating; readbackSeconds adds up every read.
+  void read(Framebuffer& fb);
 
   const RasterCounts& counts() const { return counts_; }
   // GL version and renderer, for reports.
   const std::string& description() const;
 
  private:
+  // Waits for GL and reads IDs and depths into fb (end() and read()).
+  void readInto(Framebuffer& fb);
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
   RasterCounts counts_;

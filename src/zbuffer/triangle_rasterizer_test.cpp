@@ -182,6 +182,38 @@ TEST(TriangleRasterizer, TwoPassesIntoOneTargetKeepTheNearer) {
   EXPECT_EQ(differences(farThenNear, nearThenFar), 0u);
 }
 
+// read() mid-way gives the first pass alone and leaves the pass set open: the draws after it land
+// in the same buffers, as if there had been no read (nor flush).
+TEST(TriangleRasterizer, ReadKeepsThePassSetOpen) {
+  const SoupScene s(3000, 0.3f);
+  const Camera camera = makeCamera({0.5, 1.0, 0.0}, {0.0, 0.0, -6.0}, 0.5, 30.0);
+  TriangleRasterizer r(s.scene);
+  const std::vector<uint32_t> all = iota(3000);
+  const std::span<const uint32_t> first(all.data(), 1500), second(all.data() + 1500, 1500);
+  const double clip = 6.0;
+  const Framebuffer firstAlone =
+      pass(r, camera, clip, [&] { r.drawList(s.soup(), s.world, first, 0); });
+  const Framebuffer both = pass(r, camera, clip, [&] {
+    r.drawList(s.soup(), s.world, first, 0);
+    r.setFarClip(0.0);
+    r.drawList(s.soup(), s.world, second, 0);
+  });
+  Framebuffer midway(1, 1), last(1, 1);
+  r.begin(camera, clip);
+  r.drawList(s.soup(), s.world, first, 0);
+  r.flush();  // changes nothing
+  r.read(midway);
+  r.setFarClip(0.0);
+  r.drawList(s.soup(), s.world, second, 0);
+  r.end(last);
+  EXPECT_EQ(r.counts().triangles, 3000u);
+  EXPECT_EQ(differences(midway, firstAlone), 0u);
+  EXPECT_EQ(differences(last, both), 0u);
+  EXPECT_GT(differences(last, midway), 100u);  // the second half did land
+  EXPECT_GT(firstAlone.coveredCount(), 100u);
+  EXPECT_THROW(r.read(midway), std::logic_error);  // after end(): no pass set
+}
+
 // A triangle leaning away from the camera, from view depth 2 to 10.
 Scene leaningTriangle() {
   Scene scene;
