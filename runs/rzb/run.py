@@ -13,11 +13,15 @@ STUDY: sensitivity vs_zbuffer throughput table1 walkthrough eps dynamic (default
                same process.                                                            -> throughput.csv
   table1       Table 1 analogue: d = 1, 2, 5, new sample set vs cache, on city, forest and a real mesh,
                with the z-buffer's time and accuracy.                                   -> table1.csv
-  walkthrough  80-frame walkthrough, cache against no cache (Fig. 8).                   -> walkthrough.csv/.png
+  walkthrough  80-frame walkthrough, cache against no cache, with stage times (Fig. 8): city and forest as
+               rendered by default (z-buffer fallback on) and forest / chessboard point pass only.
+                                                                       -> walkthrough.csv/.png, walkthrough_summary.csv
   eps          box selection / reconstruction time against eps, and --eps auto (Fig. 7). -> eps.csv/.png
   dynamic      insert a 5,558-triangle object into a 1.26 M triangle city one triangle at a time and
                remove it, against rebuilding (section 8.4).                             -> dynamic.csv
 The machine these ran on has 2 cores shared with other work: compare figures from the same run.
+Environment: LZB_BUILD=build folder (default build/); RZB_LOCK=/tmp/bench.lock runs every timed command
+under flock, one measurement at a time.
 """
 import csv, json, os, statistics, subprocess, sys, tempfile
 
@@ -49,10 +53,15 @@ def read_csv(name):
         return list(csv.DictReader(l for l in f if not l.startswith("#")))
 
 
+# RZB_LOCK=/path: every timed command runs under `flock /path` (machines shared with other timing work:
+# one lock per measurement, so no single hold is long).
+LOCK = ["flock", os.environ["RZB_LOCK"]] if os.environ.get("RZB_LOCK") else []
+
+
 def render(scene, args, frames=3):
     """lzb render; returns the report's frames."""
     with tempfile.TemporaryDirectory() as out:
-        cmd = [LZB, "render", scene, "--threads", str(THREADS), "--frames", str(frames), "--quiet",
+        cmd = LOCK + [LZB, "render", scene, "--threads", str(THREADS), "--frames", str(frames), "--quiet",
                "--out", out] + args
         subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
         with open(os.path.join(out, "report.json")) as f:
@@ -62,7 +71,7 @@ def render(scene, args, frames=3):
 def bench(test, env):
     """Runs a benchmark test of rzb_test (RzbBench.*, enabled by LZB_BENCH=1); returns its BENCH lines."""
     e = dict(os.environ, LZB_BENCH="1", RZB_BENCH_THREADS=str(THREADS), LZB_SOURCE_DIR=ROOT, **env)
-    p = subprocess.run([TEST, f"--gtest_filter=RzbBench.{test}"],
+    p = subprocess.run(LOCK + [TEST, f"--gtest_filter=RzbBench.{test}"],
                        env=e, check=True, capture_output=True, text=True)
     return [json.loads(l[6:]) for l in p.stdout.splitlines() if l.startswith("BENCH ")]
 
@@ -182,42 +191,76 @@ def table1():
 
 # ---------------------------------------------------------------------------------------------
 def walkthrough():
-    runs = [("city", "builtin:city", "0.5"), ("forest", "builtin:forest?levels=3", "0.5")]
+    # (name, scene, extra bench env). The first two are the default renderer (z-buffer fallback on),
+    # where OSMesa draws most of the frame and the cache can only speed up the rest; the last two
+    # are point pass only (--fallback off), which shows the cache's own effect.
+    runs = [("city", "builtin:city", {}),
+            ("forest", "builtin:forest?levels=3", {}),
+            ("forest, fallback off", "builtin:forest?levels=3", {"RZB_BENCH_FALLBACK": "off"}),
+            ("chessboard 2.2e12, fallback off", "builtin:chessboard?n=1048576", {"RZB_BENCH_FALLBACK": "off"})]
     if quick:
         runs = runs[:1]
     if not plot_only:
-        rows = []
-        for name, s, step in runs:
-            js = bench("CacheWalkthrough", {"RZB_BENCH_SCENE": s, "RZB_BENCH_STEP": step})
+        rows, summary = [], []
+        for name, s, env in runs:
+            js = bench("CacheWalkthrough", dict(env, RZB_BENCH_SCENE=s, RZB_BENCH_STEP="0.5"))
+            tot = {"name": name, "scene": s, "fallback": js[0]["fallback"], "frames": len(js)}
             for j in js:
                 j["name"] = name
+                for side in ("plain", "cached"):
+                    st = j[side + "_stages"]
+                    j[side + "_fallback_s"] = st.get("fallback", 0.0)
+                    j[side + "_splat_s"] = st.get("splat", 0.0)
+                j["cached_build_s"] = j["cached_stages"].get("cache_build", 0.0)
+                for k in ("plain_s", "cached_s", "plain_fallback_s", "cached_fallback_s", "plain_splat_s",
+                          "cached_splat_s", "cached_build_s", "cache_hits", "cache_misses", "fallback_triangles"):
+                    tot[k] = tot.get(k, 0.0) + j[k]
             rows += js
-            plain = sum(j["plain_s"] for j in js)
-            cached = sum(j["cached_s"] for j in js)
-            print(f"{name}: 80 frames {plain:.2f} s without cache, {cached:.2f} s with: x{plain / cached:.2f}", flush=True)
-        write_csv("walkthrough.csv", rows, ["name", "scene", "frame", "plain_s", "cached_s", "cache_hits",
-                                            "cache_misses", "cache_bytes", "plain_samples", "cached_samples"],
-                  "camera walks forward 0.5 m per frame; the cache starts empty")
+            tot["speedup"] = tot["plain_s"] / tot["cached_s"]
+            # The part the cache replaces: drawing samples (plain) against splatting cached sets + building them.
+            tot["point_pass_speedup"] = tot["plain_splat_s"] / (tot["cached_splat_s"] + tot["cached_build_s"])
+            tot["splat_speedup"] = tot["plain_splat_s"] / tot["cached_splat_s"]
+            tot["fallback_share"] = tot["plain_fallback_s"] / tot["plain_s"]
+            tot["fallback_triangles"] /= len(js)
+            summary.append(tot)
+            print(f"{name}: {len(js)} frames {tot['plain_s']:.2f} s without cache, {tot['cached_s']:.2f} s with: "
+                  f"x{tot['speedup']:.2f} (fallback {100 * tot['fallback_share']:.0f} % of the plain time; "
+                  f"point pass x{tot['point_pass_speedup']:.2f} incl. building sets, splat alone x{tot['splat_speedup']:.1f})",
+                  flush=True)
+        write_csv("walkthrough.csv", rows, ["name", "scene", "fallback", "frame", "plain_s", "cached_s",
+                                            "plain_fallback_s", "cached_fallback_s", "plain_splat_s", "cached_splat_s",
+                                            "cached_build_s", "cache_hits", "cache_misses", "cache_bytes",
+                                            "fallback_triangles", "plain_samples", "cached_samples"],
+                  "camera walks forward 0.5 m per frame; the cache starts empty; stage seconds per frame")
+        write_csv("walkthrough_summary.csv", summary,
+                  ["name", "scene", "fallback", "frames", "plain_s", "cached_s", "speedup", "fallback_share",
+                   "fallback_triangles", "plain_fallback_s", "cached_fallback_s", "plain_splat_s", "cached_splat_s",
+                   "cached_build_s", "point_pass_speedup", "splat_speedup", "cache_hits", "cache_misses"],
+                  "sums over the walkthrough (fallback_triangles: per frame); point_pass_speedup = "
+                  "plain splat / (cached splat + cache build)")
     rows = read_csv("walkthrough.csv")
-    for name in dict.fromkeys(r["name"] for r in rows):
-        sub = [r for r in rows if r["name"] == name]
-        with open(os.path.join(HERE, f"walkthrough_{name}.dat"), "w") as f:
-            for r in sub:
-                f.write(f"{r['frame']} {r['plain_s']} {r['cached_s']}\n")
     names = list(dict.fromkeys(r["name"] for r in rows))
-    plots = ", ".join(f"'walkthrough_{n}.dat' using 1:2 with lines title '{n}, no cache', "
-                      f"'walkthrough_{n}.dat' using 1:3 with lines title '{n}, cache'" for n in names)
-    gnuplot(f"""set terminal pngcairo size 800,500
+    files = {n: f"walkthrough_{k}.dat" for k, n in enumerate(names)}
+    for n in names:
+        with open(os.path.join(HERE, files[n]), "w") as f:
+            for r in rows:
+                if r["name"] == n:
+                    f.write(f"{r['frame']} {r['plain_s']} {r['cached_s']}\n")
+    plots = ", ".join(f"'{files[n]}' using 1:2 with lines lc {k + 1} dt 2 title '{n}, no cache', "
+                      f"'{files[n]}' using 1:3 with lines lc {k + 1} lw 2 title '{n}, cache'"
+                      for k, n in enumerate(names))
+    gnuplot(f"""set terminal pngcairo size 900,560
 set output 'walkthrough.png'
 set xlabel 'frame'
 set ylabel 'frame time (s)'
 set logscale y
 set grid
-set title 'rzb 80-frame walkthrough, 640x480, d = 1'
+set key outside below
+set title 'rzb 80-frame walkthrough, 640x480, d = 1 (dashed: new samples every frame; solid: sample cache)'
 plot {plots}
 """)
     for n in names:
-        os.remove(os.path.join(HERE, f"walkthrough_{n}.dat"))
+        os.remove(os.path.join(HERE, files[n]))
 
 
 # ---------------------------------------------------------------------------------------------

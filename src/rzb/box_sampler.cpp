@@ -17,8 +17,24 @@ DrawWords batchDraws(const SampleStream& stream, uint64_t boxKey, uint64_t first
   return DrawWords{{s.w[0].data(), s.w[1].data(), s.w[2].data(), s.w[3].data()}};
 }
 
-bool descendStep(Descent& d, const SampleStream& stream, uint64_t boxKey, glm::dvec3& p,
-                 glm::dvec3& n, const SampleTree*& leaf, uint32_t& meshIndex) {
+namespace {
+
+// Too few bits of the pick number are left: the sample's spare word, then fresh Philox draws.
+__attribute__((noinline)) void refresh(Descent& d, const SampleStream& stream, uint64_t boxKey) {
+  if (d.level == 0) {
+    d.rem = (double(d.spare) + 0.5) * 0x1p-32;
+    d.res = 0x1p-32;
+    d.level = 1;
+  } else {
+    const auto w = stream.draw(boxKey, d.index, kRefreshDraw + (d.level++ & 0xff));
+    d.rem = unit53(w[0], w[1]);
+    d.res = 0x1p-53;
+  }
+}
+
+}  // namespace
+
+void enterEntry(Descent& d, const SampleStream& stream, uint64_t boxKey) {
   const SampleTree* tree = d.tree;
   const InstanceHot& r = tree->instanceHot(d.instance);
   if (d.linear) {
@@ -35,43 +51,24 @@ bool descendStep(Descent& d, const SampleStream& stream, uint64_t boxKey, glm::d
   d.id += r.idOffset;
   tree = r.child;
   d.tree = tree;
-  if (d.res > 0x1p-16) {
-    // Too few bits of the pick number are left: the sample's spare word, then fresh Philox draws.
-    if (d.level == 0) {
-      d.rem = (double(d.spare) + 0.5) * 0x1p-32;
-      d.res = 0x1p-32;
-      d.level = 1;
-    } else {
-      const auto w = stream.draw(boxKey, d.index, kRefreshDraw + (d.level++ & 0xff));
-      d.rem = unit53(w[0], w[1]);
-      d.res = 0x1p-53;
-    }
-  }
+  if (d.res > 0x1p-16) refresh(d, stream, boxKey);
   // The whole-list pick: the alias table when the tree has one (O(1), no division).
-  uint32_t pos, ref;
   if (const size_t size = tree->aliasSize()) {
-    const AliasSlot* table = tree->aliasTable();
     const double x = d.rem * double(size);
-    const uint32_t i = uint32_t(std::min(x, double(size - 1)));
-    const double f = x - double(i);
-    const AliasSlot& slot = table[i];
-    const bool keep = f < slot.prob;
-    const double scale = keep ? slot.keepScale : slot.altScale;
-    d.rem = std::min((keep ? f : f - slot.prob) * scale, 1.0 - 0x1p-53);
-    d.res *= double(size) * scale;
-    pos = keep ? i : slot.alias;
-    ref = keep ? slot.keepRef : slot.altRef;
-  } else {
-    double next;
-    pos = tree->pickWhole(d.rem, next, d.res);
-    d.rem = next;
-    ref = tree->rec(pos).ref;
+    d.pos = uint32_t(std::min(x, double(size - 1)));
+    d.rem = x - double(d.pos);
+    tree->prefetchAliasSlot(d.pos);
+    return;
   }
-  if (ref & kInstanceBit) {
-    d.instance = ref & ~kInstanceBit;
-    return false;
-  }
-  const EntryRec& e = tree->rec(pos);
+  double next;
+  d.pos = tree->pickWhole(d.rem, next, d.res);
+  d.rem = next;
+  d.ref = tree->rec(d.pos).ref;
+}
+
+void finishDescent(const Descent& d, DescentHit& hit) {
+  const SampleTree* tree = d.tree;
+  const EntryRec& e = tree->rec(d.pos);
   glm::dvec3 v0(e.v0), e1(e.e1), e2(e.e2);
   if (d.linear) {
     v0 = d.A * v0;
@@ -79,24 +76,12 @@ bool descendStep(Descent& d, const SampleStream& stream, uint64_t boxKey, glm::d
     e2 = d.A * e2;
   }
   v0 += d.t;
-  p = v0 + double(d.a) * e1 + double(d.c) * e2;
+  hit.p = v0 + double(d.a) * e1 + double(d.c) * e2;
   // cross(A e1, A e2) = det(A) A^-T (e1 x e2): the sign of det restores the normal's side.
-  n = double(d.sign) * glm::cross(e1, e2);
-  d.id += e.ref;
-  leaf = tree;
-  meshIndex = e.ref;
-  return true;
-}
-
-void descendInstance(const SampleTree* tree, uint32_t instance, double rem, double res,
-                     uint32_t spare, const SampleStream& stream, uint64_t boxKey, uint64_t index,
-                     float a, float b, glm::dvec3& p, glm::dvec3& n, uint64_t& id,
-                     const SampleTree*& leaf, uint32_t& meshIndex) {
-  Descent d{glm::dmat3(1.0), glm::dvec3(0.0), rem, res, id, index, tree, instance, 0, spare, a, b,
-            1.0f, false};
-  while (!descendStep(d, stream, boxKey, p, n, leaf, meshIndex)) {
-  }
-  id = d.id;
+  hit.n = double(d.sign) * glm::cross(e1, e2);
+  hit.id = d.id + e.ref;
+  hit.leaf = tree;
+  hit.meshIndex = e.ref;
 }
 
 }  // namespace lzb::rzb

@@ -44,23 +44,101 @@ struct Descent {
   double rem, res;
   uint64_t id, index;
   const SampleTree* tree;
-  uint32_t instance, level;
+  uint32_t instance;  // the entry of `tree` to enter next
+  uint32_t pos, ref;  // the record picked in the child (pos: its list position)
+  uint32_t level;
   uint32_t spare;  // a fresh 32-bit word for the first refresh (the sample's Philox word 1)
   float a, c, sign;
   bool linear;
 };
 
-// Enters d's instance entry and picks in the child's whole list. Returns true when that reached a
-// triangle: then p, n (box frame), d.id (complete), leaf and meshIndex are set.
-bool descendStep(Descent& d, const SampleStream& stream, uint64_t boxKey, glm::dvec3& p,
-                 glm::dvec3& n, const SampleTree*& leaf, uint32_t& meshIndex);
+// Samples descend in groups (descendGroup), level by level. One sample's steps form a long
+// dependent chain (conversions, the slot load, selects) whose loads mostly miss the cache (random
+// entries of the child trees); members of a group are independent, so the core overlaps their
+// chains and misses. (Caching a composed transform per level would not help: a box's consecutive
+// samples share their first instance entry, but the next level's picks already differ.)
+constexpr uint32_t kDescentGroup = 64;
+static_assert(kDescentGroup <= 256, "group indices are bytes");
 
-// All levels for one sample. spare: an unused 32-bit word of the sample's Philox numbers.
-void descendInstance(const SampleTree* tree, uint32_t instance, double rem, double res,
-                     uint32_t spare, const SampleStream& stream, uint64_t boxKey, uint64_t index,
-                     float a, float b,
-                     glm::dvec3& p, glm::dvec3& n, uint64_t& id, const SampleTree*& leaf,
-                     uint32_t& meshIndex);
+// Where a finished descent landed: p, n in the box frame, the complete expanded ID, the leaf tree
+// and the triangle's mesh index there.
+struct DescentHit {
+  glm::dvec3 p, n;
+  uint64_t id;
+  const SampleTree* leaf;
+  uint32_t meshIndex;
+};
+
+// A descent into instance entry `instance` of `tree`.
+inline void startDescent(Descent& d, const SampleTree* tree, uint32_t instance, double rem,
+                         double res, uint32_t spare, uint64_t id, uint64_t index, float a, float c) {
+  d.A = glm::dmat3(1.0);
+  d.t = glm::dvec3(0.0);
+  d.rem = rem;
+  d.res = res;
+  d.id = id;
+  d.index = index;
+  d.tree = tree;
+  d.instance = instance;
+  d.level = 0;
+  d.spare = spare;
+  d.a = a;
+  d.c = c;
+  d.sign = 1.0f;
+  d.linear = false;
+}
+
+// Enters d's instance entry (composing its transform) and starts the pick in the child's whole
+// list: with an alias table, d.pos = the slot (its line prefetched) and d.rem = the position
+// inside it, finished by pickSlot; without one, the pick is complete.
+void enterEntry(Descent& d, const SampleStream& stream, uint64_t boxKey);
+// Reads d's alias slot: sets d.pos, d.ref and the remainder.
+inline void pickSlot(Descent& d) {
+  const size_t size = d.tree->aliasSize();
+  const AliasSlot& slot = d.tree->aliasTable()[d.pos];
+  const double f = d.rem;
+  const bool keep = f < slot.prob;
+  const double scale = keep ? slot.keepScale : slot.altScale;
+  d.rem = std::min((keep ? f : f - slot.prob) * scale, 1.0 - 0x1p-53);
+  d.res *= double(size) * scale;
+  d.ref = keep ? slot.keepRef : slot.altRef;
+  d.pos = keep ? d.pos : slot.alias;
+}
+// d picked a triangle: where the sample lands.
+void finishDescent(const Descent& d, DescentHit& hit);
+
+// Runs group[0, n) down to their triangles; emit(const DescentHit&) for each, in an order that
+// depends only on the group. Each level is three passes over the members still descending (enter
+// and prefetch the slot; read the slot and prefetch what comes next; finish those on a triangle),
+// so the loads of one pass were started a whole pass earlier.
+template <class Emit>
+void descendGroup(Descent* group, uint32_t n, const SampleStream& stream, uint64_t boxKey,
+                  Emit&& emit) {
+  uint8_t active[kDescentGroup], leaves[kDescentGroup];
+  for (uint32_t k = 0; k < n; ++k) active[k] = uint8_t(k);
+  DescentHit hit;
+  while (n) {
+    for (uint32_t k = 0; k < n; ++k) enterEntry(group[active[k]], stream, boxKey);
+    uint32_t still = 0, done = 0;
+    for (uint32_t k = 0; k < n; ++k) {
+      Descent& d = group[active[k]];
+      if (d.tree->aliasSize()) pickSlot(d);
+      if (d.ref & kInstanceBit) {
+        d.instance = d.ref & ~kInstanceBit;
+        d.tree->prefetchInstance(d.instance);
+        active[still++] = active[k];
+      } else {
+        d.tree->prefetchRec(d.pos);
+        leaves[done++] = active[k];
+      }
+    }
+    for (uint32_t k = 0; k < done; ++k) {
+      finishDescent(group[leaves[k]], hit);
+      emit(hit);
+    }
+    n = still;
+  }
+}
 
 // The first j in [from, e) with P[j] > target (e - 1 if none), from >= b: a forward gallop.
 inline uint64_t searchForward(const double* P, uint64_t e, uint64_t from, double target) {
@@ -104,6 +182,13 @@ void drawBoxSamples(const SelectedBox& box, const SampleStream& stream, uint64_t
   }
   const double inv = 1.0 / double(total);
   uint64_t j = b;
+  Descent group[kDescentGroup];
+  uint32_t grouped = 0;
+  const auto descend = [&] {
+    descendGroup(group, grouped, stream, box.key,
+                 [&](const DescentHit& h) { sink(h.p, h.n, h.id, h.leaf, h.meshIndex); });
+    grouped = 0;
+  };
   for (uint64_t s0 = first; s0 < first + count; s0 += kDrawBatch) {
     const uint32_t n = uint32_t(std::min<uint64_t>(kDrawBatch, first + count - s0));
     const DrawWords d = batchDraws(stream, box.key, s0, n);
@@ -136,16 +221,12 @@ void drawBoxSamples(const SelectedBox& box, const SampleStream& stream, uint64_t
         // In float, as exact as the vertices themselves; the transform to camera space is double.
         const glm::vec3 p = r.v0 + a * r.e1 + c * r.e2;
         sink(glm::dvec3(p), glm::dvec3(glm::cross(r.e1, r.e2)), box.idBase + r.ref, &tree, r.ref);
-      } else {
-        glm::dvec3 p, nrm;
-        uint64_t id = box.idBase;
-        const SampleTree* leaf;
-        uint32_t mi;
-        descendInstance(&tree, r.index(), rem, res, d.w[1][k], stream, box.key, i, a, c, p, nrm, id,
-                        leaf, mi);
-        sink(p, nrm, id, leaf, mi);
+        continue;
       }
+      startDescent(group[grouped++], &tree, r.index(), rem, res, d.w[1][k], box.idBase, i, a, c);
+      if (grouped == kDescentGroup) descend();
     }
+    descend();
     // A sink may buffer a batch (e.g. to splat it after the tree lookups, so the two working sets
     // do not evict each other from the cache).
     if constexpr (requires { sink.flush(); }) sink.flush();

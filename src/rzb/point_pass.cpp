@@ -89,6 +89,12 @@ struct Splatter {
     uint64_t id;
   };
   std::vector<Pending> pending;
+  struct Target {
+    size_t pixel;
+    uint32_t zbits;
+    uint64_t id;
+  };
+  std::vector<Target> targets;
 
   Splatter(const SplatSetup& setup, KeyBuffer& kb)
       : s(setup),
@@ -96,6 +102,14 @@ struct Splatter {
         cx(0.5 * setup.width),
         cy(0.5 * setup.height) {
     pending.reserve(kDrawBatch);
+    if constexpr (kPixel) targets.resize(kDrawBatch);
+  }
+
+  inline void prefetchKey(size_t i) const {
+    if constexpr (kWide)
+      __builtin_prefetch(static_cast<Key128*>(keys) + i, 1);
+    else
+      __builtin_prefetch(static_cast<uint64_t*>(keys) + i, 1);
   }
 
   inline void write(size_t i, uint32_t zbits, uint64_t id) {
@@ -138,7 +152,29 @@ struct Splatter {
   }
 
   void flush() {
-    for (const Pending& q : pending) put(q.x, q.y, q.z, q.id);
+    if constexpr (kPixel) {
+      // Pixel indices first, then the atomic minima with the key buffer's lines prefetched a few
+      // samples ahead (the buffer is larger than L2, and a locked compare-and-swap waits for the
+      // loads before it, so misses would otherwise come one at a time).
+      if (targets.size() < pending.size()) targets.resize(pending.size());
+      size_t m = 0;
+      for (const Pending& q : pending) {
+        if (!(q.z >= s.nearPlane && q.z <= s.farPlane)) continue;
+        const double inv = s.pixelScale / q.z;
+        const double px = cx + q.x * inv, py = cy - q.y * inv;
+        if (!(px >= 0.0 && px < s.width && py >= 0.0 && py < s.height)) continue;
+        targets[m++] = Target{size_t(int(py)) * size_t(s.width) + size_t(int(px)),
+                              std::bit_cast<uint32_t>(q.z), q.id};
+      }
+      constexpr size_t kAhead = 16;
+      for (size_t k = 0; k < m; ++k) {
+        if (k + kAhead < m) prefetchKey(targets[k + kAhead].pixel);
+        write(targets[k].pixel, targets[k].zbits, targets[k].id);
+      }
+      c.splatted += m;
+    } else {
+      for (const Pending& q : pending) put(q.x, q.y, q.z, q.id);
+    }
     pending.clear();
   }
 
@@ -150,37 +186,55 @@ struct Splatter {
         continue;
       }
       const glm::dvec3 q = toCam.point(p);
-      put(float(q.x), float(q.y), float(q.z), cs->id);
+      pending.push_back(Pending{float(q.x), float(q.y), float(q.z), cs->id});
+      if (pending.size() == kDrawBatch) flush();
     }
+    flush();
   }
 };
+
+// Runs every job on `threads` threads (dynamic schedule, one job at a time), each thread with its
+// own sink from make(); per job, prepare(sink, box), then the job's samples, drawn or (for a sink
+// that reads them) cached, go to the sink.
+template <class Make, class Prepare>
+PassCounts runJobs(std::span<const SplatJob> jobs, std::span<const SelectedBox> boxes,
+                   const SampleStream& stream, int threads, Make&& make, Prepare&& prepare) {
+  uint64_t drawn = 0, back = 0, splatted = 0;
+  const long n = long(jobs.size());
+#pragma omp parallel num_threads(threads) reduction(+ : drawn, back, splatted)
+  {
+    auto sink = make();
+#pragma omp for schedule(dynamic, 1)
+    for (long k = 0; k < n; ++k) {
+      const SplatJob& j = jobs[size_t(k)];
+      const SelectedBox& b = boxes[j.box];
+      prepare(sink, b);
+      sink.c.drawn += j.count;
+      if constexpr (requires { sink.cached(j.cached, j.count); }) {
+        if (j.cached) {
+          sink.cached(j.cached + j.first, j.count);
+          continue;
+        }
+      }
+      drawBoxSamples(b, stream, j.first, j.count, b.samples, sink);
+    }
+    drawn += sink.c.drawn;
+    back += sink.c.back;
+    splatted += sink.c.splatted;
+  }
+  return PassCounts{drawn, back, splatted};
+}
 
 template <bool kWide, bool kPixel>
 PassCounts runSplat(std::span<const SplatJob> jobs, std::span<const SelectedBox> boxes,
                     const SampleStream& stream, const SplatSetup& setup, KeyBuffer& keys,
                     int threads) {
-  uint64_t drawn = 0, back = 0, splatted = 0;
-  const long n = long(jobs.size());
-#pragma omp parallel num_threads(threads) reduction(+ : drawn, back, splatted)
-  {
-    Splatter<kWide, kPixel> sp(setup, keys);
-#pragma omp for schedule(dynamic, 1)
-    for (long k = 0; k < n; ++k) {
-      const SplatJob& j = jobs[size_t(k)];
-      const SelectedBox& b = boxes[j.box];
-      sp.toCam = b.toCamera;
-      sp.eye = b.eyeLocal;
-      if (j.cached)
-        sp.cached(j.cached + j.first, j.count);
-      else
-        drawBoxSamples(b, stream, j.first, j.count, b.samples, sp);
-      sp.c.drawn += j.count;
-    }
-    drawn += sp.c.drawn;
-    back += sp.c.back;
-    splatted += sp.c.splatted;
-  }
-  return PassCounts{drawn, back, splatted};
+  return runJobs(
+      jobs, boxes, stream, threads, [&] { return Splatter<kWide, kPixel>(setup, keys); },
+      [](Splatter<kWide, kPixel>& sp, const SelectedBox& b) {
+        sp.toCam = b.toCamera;
+        sp.eye = b.eyeLocal;
+      });
 }
 
 }  // namespace
@@ -326,29 +380,22 @@ PassCounts gaussAccumulate(std::span<const SplatJob> jobs, std::span<const Selec
                            const std::vector<float>& depth, const Scene& scene,
                            std::vector<uint64_t>& accum, int threads) {
   accum.assign(4 * size_t(setup.width) * size_t(setup.height), 0);
-  uint64_t drawn = 0, back = 0, splatted = 0;
-  const long n = long(jobs.size());
-#pragma omp parallel num_threads(threads) reduction(+ : drawn, back, splatted)
-  {
-    GaussSink g{setup, depth, accum.data(), lightDirection(scene.light), float(scene.light.ambient),
-                0.5 * setup.width, 0.5 * setup.height, 0.5 * setup.splat, setup.splat * 1.0,
-                // A surface seen at up to ~75 degrees changes depth by < 4 footprints per splat.
-                4.0 * setup.splat / setup.pixelScale, {}, glm::dmat3(1.0), glm::dvec3(0.0), {}};
-#pragma omp for schedule(dynamic, 1)
-    for (long k = 0; k < n; ++k) {
-      const SplatJob& j = jobs[size_t(k)];
-      const SelectedBox& b = boxes[j.box];
-      g.toCam = b.toCamera;
-      g.eye = b.eyeLocal;
-      g.normalToWorld = glm::transpose(glm::inverse(b.toWorld.a));
-      drawBoxSamples(b, stream, j.first, j.count, b.samples, g);
-      g.c.drawn += j.count;
-    }
-    drawn += g.c.drawn;
-    back += g.c.back;
-    splatted += g.c.splatted;
-  }
-  return PassCounts{drawn, back, splatted};
+  const glm::vec3 toLight = lightDirection(scene.light);
+  return runJobs(
+      jobs, boxes, stream, threads,
+      [&] {
+        return GaussSink{setup, depth, accum.data(), toLight, float(scene.light.ambient),
+                         0.5 * setup.width, 0.5 * setup.height, 0.5 * setup.splat, setup.splat * 1.0,
+                         // A surface seen at up to ~75 degrees changes depth by < 4 footprints per
+                         // splat.
+                         4.0 * setup.splat / setup.pixelScale, {}, glm::dmat3(1.0), glm::dvec3(0.0),
+                         {}};
+      },
+      [](GaussSink& g, const SelectedBox& b) {
+        g.toCam = b.toCamera;
+        g.eye = b.eyeLocal;
+        g.normalToWorld = glm::transpose(glm::inverse(b.toWorld.a));
+      });
 }
 
 double measureScatterLimit(int width, int height, int threads, double seconds) {

@@ -9,6 +9,7 @@
 #include <cstdlib>
 
 #include <map>
+#include <stdexcept>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -40,14 +41,29 @@ int benchThreads() {
   return t ? std::atoi(t) : 2;
 }
 
+// The scene named by RZB_BENCH_SCENE (or `otherwise`), loaded with its camera, and the benchmark's
+// thread count (RZB_BENCH_THREADS, default 2), already in use.
+struct BenchSetup {
+  std::string spec;
+  Scene scene;
+  int threads;
+};
+BenchSetup benchSetup(const char* otherwise = nullptr) {
+  const char* spec = std::getenv("RZB_BENCH_SCENE");
+  if (!spec) spec = otherwise;
+  if (!spec) throw std::runtime_error("set RZB_BENCH_SCENE");
+  BenchSetup b{spec, loadScene(spec, true), benchThreads()};
+  useThreads(b.threads);
+  return b;
+}
+
 // The point pass's parts on one scene: draws only, draws + list search, the whole splat; and the
 // atomic-min scatter limit measured in the same process.
 TEST(RzbBench, PointPassParts) {
   if (!benchEnabled()) GTEST_SKIP() << "set LZB_BENCH=1";
-  const char* spec = std::getenv("RZB_BENCH_SCENE");
-  const Scene scene = loadScene(spec ? spec : "builtin:chessboard?n=64", true);
-  const int threads = benchThreads();
-  useThreads(threads);
+  const BenchSetup bench = benchSetup("builtin:chessboard?n=64");
+  const Scene& scene = bench.scene;
+  const int threads = bench.threads;
   const Camera camera = sceneCamera(scene, 640, 480);
   // RZB_BENCH_FALLBACK=auto keeps the z-buffer fallback (only the point pass is timed here).
   const char* fb = std::getenv("RZB_BENCH_FALLBACK");
@@ -242,11 +258,10 @@ Camera walkCamera(const Scene& scene, int frame, double step, int width, int hei
 // cache (same view, warm), the z-buffer's time, and accuracy against it.
 TEST(RzbBench, Table1) {
   if (!benchEnabled()) GTEST_SKIP() << "set LZB_BENCH=1";
-  const char* spec = std::getenv("RZB_BENCH_SCENE");
-  ASSERT_TRUE(spec) << "set RZB_BENCH_SCENE";
-  const Scene scene = loadScene(spec, true);
-  const int threads = benchThreads();
-  useThreads(threads);
+  const BenchSetup bench = benchSetup();
+  const Scene& scene = bench.scene;
+  const int threads = bench.threads;
+  const char* spec = bench.spec.c_str();
   const Camera camera = sceneCamera(scene, 640, 480);
   const bool withZ = !std::getenv("RZB_BENCH_NO_ZBUFFER");
   Framebuffer ref;
@@ -298,20 +313,34 @@ TEST(RzbBench, Table1) {
   }
 }
 
-// Section 8.5: an 80-frame walkthrough with and without the cache (starting empty).
+// Section 8.5: an 80-frame walkthrough with and without the cache (starting empty), with the
+// stage times of both (which part the cache can speed up). RZB_BENCH_FALLBACK=off: point pass
+// only; RZB_BENCH_SPLAT=d; RZB_BENCH_FRAMES=n (default 80).
 TEST(RzbBench, CacheWalkthrough) {
   if (!benchEnabled()) GTEST_SKIP() << "set LZB_BENCH=1";
-  const char* spec = std::getenv("RZB_BENCH_SCENE");
-  ASSERT_TRUE(spec) << "set RZB_BENCH_SCENE";
+  const BenchSetup bench = benchSetup();
+  const Scene& scene = bench.scene;
+  const int threads = bench.threads;
+  const char* spec = bench.spec.c_str();
   const char* stepEnv = std::getenv("RZB_BENCH_STEP");
   const double step = stepEnv ? std::atof(stepEnv) : 0.5;
-  const Scene scene = loadScene(spec, true);
-  const int threads = benchThreads();
-  useThreads(threads);
-  RzbParams plain, cached;
+  const char* framesEnv = std::getenv("RZB_BENCH_FRAMES");
+  const int frames = framesEnv ? std::atoi(framesEnv) : 80;
+  RzbParams plain;
+  const char* fb = std::getenv("RZB_BENCH_FALLBACK");
+  plain.fallback = !(fb && std::string(fb) == "off");
+  const char* splat = std::getenv("RZB_BENCH_SPLAT");
+  plain.splat = splat ? std::atoi(splat) : 1;
+  plain.reconstruct = plain.splat > 1 ? Reconstruct::kSplat : Reconstruct::kPixel;
+  RzbParams cached = plain;
   cached.cacheMb = 2048.0;
   RzbRenderer a(scene, options(threads), plain), b(scene, options(threads), cached);
-  for (int f = 0; f < 80; ++f) {
+  const auto stages = [](const FrameStats& s) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const auto& [n, v] : s.stageSeconds) j[n] = v;
+    return j;
+  };
+  for (int f = 0; f < frames; ++f) {
     const Camera camera = walkCamera(scene, f, step, 640, 480);
     FrameStats sa, sb;
     Stopwatch c;
@@ -320,12 +349,17 @@ TEST(RzbBench, CacheWalkthrough) {
     renderWith(b, camera, f, {}, &sb);
     const double tb = c.lap();
     const nlohmann::json j = {{"scene", spec},
+                              {"fallback", plain.fallback ? "auto" : "off"},
+                              {"d", plain.splat},
                               {"frame", f},
                               {"plain_s", ta},
                               {"cached_s", tb},
+                              {"plain_stages", stages(sa)},
+                              {"cached_stages", stages(sb)},
                               {"cache_hits", sb.counts["cache_hits"]},
                               {"cache_misses", sb.counts["cache_misses"]},
                               {"cache_bytes", sb.counts["cache_bytes"]},
+                              {"fallback_triangles", sa.counts["fallback_triangles"]},
                               {"plain_samples", sa.counts["samples_drawn"]},
                               {"cached_samples", sb.counts["samples_drawn"]}};
     std::printf("BENCH %s\n", j.dump().c_str());
@@ -335,11 +369,10 @@ TEST(RzbBench, CacheWalkthrough) {
 // Fig. 7: box selection and reconstruction time against eps, and where --eps auto lands.
 TEST(RzbBench, EpsCurve) {
   if (!benchEnabled()) GTEST_SKIP() << "set LZB_BENCH=1";
-  const char* spec = std::getenv("RZB_BENCH_SCENE");
-  ASSERT_TRUE(spec) << "set RZB_BENCH_SCENE";
-  const Scene scene = loadScene(spec, true);
-  const int threads = benchThreads();
-  useThreads(threads);
+  const BenchSetup bench = benchSetup();
+  const Scene& scene = bench.scene;
+  const int threads = bench.threads;
+  const char* spec = bench.spec.c_str();
   const Camera camera = sceneCamera(scene, 640, 480);
   std::vector<double> values;
   for (double e = 1.02; e < 16.0; e *= 1.25) values.push_back(e);

@@ -77,8 +77,9 @@ SampleTree::SampleTree(const Scene& scene, uint32_t node, std::span<const uint32
   buildStatic(items);
 }
 
-InstanceHot SampleTree::makeHot(uint32_t i) const {
+InstanceHot SampleTree::makeHot(uint32_t i) {
   const InstanceRef& r = instances_[i];
+  anyLinear_ = anyLinear_ || !r.translationOnly;
   return InstanceHot{r.child, r.transform.t, r.idOffset, float(r.detSign),
                      r.translationOnly ? 0u : i + 1};
 }

@@ -179,6 +179,15 @@ class SampleTree {
   const AliasSlot* aliasTable() const { return dynamic_ ? nullptr : alias_.data(); }
   size_t aliasSize() const { return dynamic_ ? 0 : alias_.size(); }
   const InstanceHot& instanceHot(uint32_t i) const { return hot_[i]; }
+  // Starts loading what a sample entering instance entry i reads (its hot record and, when some
+  // entry of this tree has a linear part, that matrix), so a group of descending samples overlaps
+  // its cache misses.
+  void prefetchInstance(uint32_t i) const {
+    prefetchSpan(&hot_[i], sizeof(InstanceHot));
+    if (anyLinear_) prefetchSpan(&instances_[i].transform.a, sizeof(glm::dmat3));
+  }
+  void prefetchAliasSlot(uint32_t i) const { prefetchSpan(&alias_[i], sizeof(AliasSlot)); }
+  void prefetchRec(uint32_t r) const { prefetchSpan(&recs_[r], sizeof(EntryRec)); }
 
   // Calls f(recIndex) for every entry of a box (triangles and instance entries).
   template <class F>
@@ -225,7 +234,7 @@ class SampleTree {
                      std::vector<uint32_t>& order, std::vector<uint32_t>& scratch);
   void finishStatic(const std::vector<Item>& items, const std::vector<uint32_t>& order);
   void buildAlias();
-  InstanceHot makeHot(uint32_t i) const;
+  InstanceHot makeHot(uint32_t i);  // also notes a linear part in anyLinear_
   uint32_t newNode(const glm::dvec3& center, double half, int depth, uint32_t parent, int cls);
   bool extContains(const glm::dvec3& center, double half, const Bounds& b) const;
   DynOwn& dynOwn(uint32_t n);
@@ -242,6 +251,14 @@ class SampleTree {
   static uint32_t pickSums(const std::vector<uint32_t>& recs, const std::vector<double>& sums,
                            double v, double& rem, double& res);
 
+  // Every cache line of [p, p + bytes).
+  static void prefetchSpan(const void* p, size_t bytes) {
+    const char* c = static_cast<const char*>(p);
+    __builtin_prefetch(c);
+    if ((reinterpret_cast<uintptr_t>(c) & 63) + bytes > 64) __builtin_prefetch(c + bytes - 1);
+    if (bytes > 64 && (reinterpret_cast<uintptr_t>(c) & 63) + bytes > 128) __builtin_prefetch(c + 64);
+  }
+
   const Scene* scene_;
   const Mesh* mesh_;
   uint32_t sceneNode_;
@@ -250,6 +267,7 @@ class SampleTree {
   Bounds bounds_;
   bool dynamic_ = false;
   bool wantAlias_ = false;
+  bool anyLinear_ = false;  // some instance entry has a linear part (not translation only)
   std::vector<ClassRoot> classes_;
   std::vector<TreeNode> nodes_;
   std::vector<double> prefix_;    // the distribution list (static part)
