@@ -7,6 +7,7 @@
 #include "mpi/group.hpp"
 #include "src/cli/compare_command.hpp"
 #include "src/cli/info_command.hpp"
+#include "src/cli/omp_wait_policy.hpp"
 #include "src/cli/render_command.hpp"
 #include "src/core/error.hpp"
 
@@ -21,6 +22,7 @@ std::string joinArgs(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  lzb::preferPassiveOmpWait(argv);
   lzb::mpi::Session session(&argc, &argv);
   const lzb::mpi::Group g = lzb::mpi::Group::world();
   const std::string commandLine = joinArgs(argc, argv);
