@@ -4,9 +4,13 @@
 #include <functional>
 #include <stdexcept>
 
+#include "src/core/progress.hpp"
 #include "src/core/timer.hpp"
 
 namespace lzb::rzb {
+
+// Builds of fewer unique triangles show no progress line.
+constexpr uint64_t kProgressTriangles = uint64_t(1) << 20;
 
 InstanceRef makeInstanceRef(const Scene& scene, uint32_t child, const SampleTree* childTree,
                             const glm::dmat4& transform, uint64_t idOffset) {
@@ -94,6 +98,11 @@ SampleScene::SampleScene(const Scene& scene, const TreeParams& params)
   };
   visit(scene.root);
   const int maxHeight = height[scene.root];
+  uint64_t toBuild = 0;
+  for (uint32_t v = 0; v < n; ++v)
+    if (height[v] >= 0) toBuild += scene.nodes[v].mesh.size();
+  Progress progress("rzb sample trees (triangles)", toBuild,
+                    params_.progress && toBuild >= kProgressTriangles);
   for (int h = 0; h <= maxHeight; ++h) {
     std::vector<uint32_t> level;
     for (uint32_t v = 0; v < n; ++v)
@@ -107,8 +116,10 @@ SampleScene::SampleScene(const Scene& scene, const TreeParams& params)
       const uint32_t v = level[k];
       trees_[v] = std::make_unique<SampleTree>(scene, v, std::span<const uint32_t>{}, true,
                                                flattenInstances(v), params_);
+      progress.add(scene.nodes[v].mesh.size());
     }
   }
+  progress.done();
   for (uint32_t v = 0; v < n; ++v) {
     if (!trees_[v]) continue;
     const SampleTree& t = *trees_[v];

@@ -45,6 +45,7 @@ struct TreeParams {
   // Instance flattening (sample_scene.hpp): a tree takes its triangle-less children's instances
   // in place of them while it stays under this many entries.
   size_t flattenBudget = 4096;
+  bool progress = false;  // SampleScene shows a progress line for large builds
 };
 
 // A list entry as the sampler reads it.
