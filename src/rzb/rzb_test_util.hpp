@@ -11,6 +11,7 @@
 #include "src/core/camera.hpp"
 #include "src/core/framebuffer.hpp"
 #include "src/core/renderer.hpp"
+#include "src/core/test_camera.hpp"
 #include "src/rzb/rzb_renderer.hpp"
 #include "src/scene/load.hpp"
 #include "src/zbuffer/zbuffer_renderer.hpp"
@@ -19,13 +20,7 @@ namespace lzb::rzb::testing_util {
 
 inline Camera makeCamera(const glm::dvec3& position, const glm::dvec3& lookAt, double n, double f,
                          int width, int height, double fov = 45.0) {
-  CameraSpec spec;
-  spec.position = position;
-  spec.lookAt = lookAt;
-  spec.nearPlane = n;
-  spec.farPlane = f;
-  spec.fovyDegrees = fov;
-  return Camera(spec, width, height);
+  return lzb::testing_util::lookAtCamera(position, lookAt, n, f, width, height, fov);
 }
 
 // The scene's own camera (or a framing one) at width x height.
