@@ -15,6 +15,7 @@ struct LzbArgs {
   std::string plane = "cost";
   std::string occluderMode = "dynamic";
   std::string walk;  // empty: the stage's own
+  std::string pvlRender = "native";
   LzbOptions options;
 };
 
@@ -33,7 +34,8 @@ void addOptions(CLI::App& c) {
                "lzb: partition plane: auto (coarse ray casting, mean depth), cost (coarse ray "
                "casting, cost model) or a fraction F in (0, 1) of the frustum depth")
       ->capture_default_str();
-  c.add_option("--plane-grid", o.planeGrid, "lzb: coarse rays of the dynamic planes (auto, cost): N x N pixels")
+  c.add_option("--plane-grid", o.planeGrid,
+               "lzb: coarse rays of the dynamic planes (auto, cost): N x N pixels")
       ->capture_default_str();
   c.add_option("--plane-reuse", o.planeReuse,
                "lzb: frames a dynamic plane may be reused while still valid (0: never)")
@@ -46,6 +48,10 @@ void addOptions(CLI::App& c) {
   c.add_option("--lzb-walk", a.walk,
                "lzb: ray-octree walk: topdown | coherent (default: coherent for final, else "
                "topdown)");
+  c.add_option("--pvl-render", a.pvlRender,
+               "lzb: how the PVL is z-buffered: native (multithreaded, only at the unfinished "
+               "pixels) | gl (OSMesa, into the near pass's z-buffer)")
+      ->capture_default_str();
   c.add_option("--lzb-depth-complexity", o.depthComplexityGrid,
                "lzb diagnostic: count every surface along N x N rays per frame (reported as "
                "depth_complexity, timed as stage 'diagnostics'; 0: off)")
@@ -65,6 +71,7 @@ void validateArgs() {
   o.occluderMode = parseOccluderMode(a.occluderMode, "--occluder-mode");
   o.walkOverride = !a.walk.empty();
   if (o.walkOverride) o.walk = parseOctreeWalk(a.walk, "--lzb-walk");
+  o.pvlRender = parsePvlRender(a.pvlRender, "--pvl-render");
   validate(o);
 }
 
@@ -80,6 +87,7 @@ nlohmann::json parameters() {
     j["plane_grid"] = o.planeGrid;
     j["plane_reuse"] = o.planeReuse;
   }
+  if (o.usesPvl()) j["pvl_render"] = toString(o.pvlRender);
   if (o.usesOccluders()) {
     j["occluders"] = o.occluders;
     j["occluder_mode"] = toString(o.occluderMode);

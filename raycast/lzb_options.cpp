@@ -29,6 +29,8 @@ constexpr OccluderMode kModes[] = {OccluderMode::kStatic, OccluderMode::kDynamic
                                    OccluderMode::kHybrid};
 constexpr const char* kWalkNames[] = {"topdown", "coherent"};
 constexpr OctreeWalk kWalks[] = {OctreeWalk::kTopDown, OctreeWalk::kCoherent};
+constexpr const char* kPvlRenderNames[] = {"native", "gl"};
+constexpr PvlRender kPvlRenders[] = {PvlRender::kNative, PvlRender::kGl};
 
 }  // namespace
 
@@ -42,6 +44,10 @@ OccluderMode parseOccluderMode(const std::string& text, const std::string& field
 
 OctreeWalk parseOctreeWalk(const std::string& text, const std::string& field) {
   return parseName(text, field, kWalkNames, kWalks);
+}
+
+PvlRender parsePvlRender(const std::string& text, const std::string& field) {
+  return parseName(text, field, kPvlRenderNames, kPvlRenders);
 }
 
 void parsePlane(const std::string& text, const std::string& field, LzbOptions& options) {
@@ -67,6 +73,9 @@ std::string toString(OccluderMode mode) {
 }
 std::string toString(OctreeWalk walk) {
   return kWalkNames[int(walk)];
+}
+std::string toString(PvlRender render) {
+  return kPvlRenderNames[int(render)];
 }
 
 void validate(const LzbOptions& o) {

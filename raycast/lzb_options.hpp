@@ -22,6 +22,10 @@ enum class OccluderMode { kStatic, kDynamic, kHybrid };
 // starting from the previous ray's start leaf (see lzb_ray_walk.hpp).
 enum class OctreeWalk { kTopDown, kCoherent };
 
+// How the PVL is z-buffered: the project's native sparse z-buffer at the unfinished pixels only
+// (lzb_pvl_raster.hpp), or OSMesa into the near pass's GL z-buffer.
+enum class PvlRender { kNative, kGl };
+
 struct LzbOptions {
   LzbStage stage = LzbStage::kFinal;
   double planeFraction = 0.0;  // 0: dynamic plane (coarse ray casting); else static, in (0, 1)
@@ -34,7 +38,8 @@ struct LzbOptions {
   int instanceLeafEntries = 8;  // leaf limit for nodes with more instances than triangles
   bool walkOverride = false;    // use `walk` instead of the stage's own octree walk
   OctreeWalk walk = OctreeWalk::kCoherent;
-  int depthComplexityGrid = 0;  // diagnostic: G x G rays count every surface (0: off)
+  PvlRender pvlRender = PvlRender::kNative;  // faster on the paper experiment (LZB.md)
+  int depthComplexityGrid = 0;               // diagnostic: G x G rays count every surface (0: off)
 
   bool dynamicPlane() const { return planeFraction == 0.0; }
   bool usesPvl() const { return stage != LzbStage::kNaive; }
@@ -50,12 +55,14 @@ struct LzbOptions {
 LzbStage parseLzbStage(const std::string& text, const std::string& field);
 OccluderMode parseOccluderMode(const std::string& text, const std::string& field);
 OctreeWalk parseOctreeWalk(const std::string& text, const std::string& field);
+PvlRender parsePvlRender(const std::string& text, const std::string& field);
 // --plane: "auto" (dynamic, mean depth), "cost" (dynamic, cost model) or a fraction in (0, 1)
 // (static); sets planeFraction and costPlane.
 void parsePlane(const std::string& text, const std::string& field, LzbOptions& options);
 std::string toString(LzbStage stage);
 std::string toString(OccluderMode mode);
 std::string toString(OctreeWalk walk);
+std::string toString(PvlRender render);
 
 // Throws InputError naming the option (CLI spelling) for an out-of-range value.
 void validate(const LzbOptions& options);

@@ -127,10 +127,11 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
   nearFb.resize(fb.width, fb.height);
   // With a PVL to come, the pass set stays open: the PVL is drawn into the same z-buffer.
   bool passOpen = false;
+  const bool glPvl = lzb_.usesPvl() && lzb_.pvlRender == PvlRender::kGl;
   if (nearLists.triangles > 0 && zClip > camera.nearPlane()) {
     raster_->begin(camera, zClip);
     drawLists(*raster_, scene_, nearLists);
-    if (lzb_.usesPvl()) {
+    if (glPvl) {
       raster_->read(nearFb);
       passOpen = true;
     } else {
@@ -143,7 +144,16 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
 
   // 4. Unfinished pixels.
   uint64_t unfinished = 0;
-  for (size_t i = 0; i < nearFb.size(); ++i) unfinished += nearFb.id[i] == kNoId;
+  const bool nativePvl = lzb_.usesPvl() && !glPvl;
+  if (nativePvl) {
+    open_.resize(nearFb.size());
+    for (size_t i = 0; i < nearFb.size(); ++i) {
+      open_[i] = nearFb.id[i] == kNoId;
+      unfinished += open_[i];
+    }
+  } else {
+    for (size_t i = 0; i < nearFb.size(); ++i) unfinished += nearFb.id[i] == kNoId;
+  }
   plane_.observe(unfinished);
   stats.addStage("unfinished", clock.lap());
 
@@ -211,7 +221,16 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
     // The PVL by z-buffer, unclipped, on top of the near pass: one z-buffer holds both, so
     // there is one target to clear, finish and read instead of two plus a composite. (A pass
     // set left open without a PVL is dropped: the next begin() starts afresh.)
-    if (last_.pvl.triangles > 0) {
+    if (last_.pvl.triangles > 0 && nativePvl) {
+      // Native: only the unfinished pixels can change (the near pass is exact where it drew),
+      // and a PVL triangle covers an unfinished pixel only where a ray was cast (OOR polygons
+      // hold the projections of the far content boxes). Every rank draws its PVL part at every
+      // unfinished pixel, so the ranks' composite is the 1-rank image.
+      fb.depth = nearFb.depth;
+      fb.id = nearFb.id;
+      pvlRaster_.draw(scene_, camera, last_.pvl, open_, threads, fb);
+      combined = true;
+    } else if (last_.pvl.triangles > 0) {
       if (passOpen)
         raster_->setFarClip(0.0);
       else
@@ -278,6 +297,9 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
     stats.addCount("rays_hit", double(w.hits));
     stats.addCount("pvl_size", double(last_.pvl.triangles));
     stats.addCount("pvl_leaves", double(last_.pvl.leaves));
+    // Triangles (pieces, after clipping) that may cover a pixel centre of the image.
+    if (nativePvl && combined)
+      stats.addCount("pvl_raster_triangles", double(pvlRaster_.counts().setUp));
   }
   (void)frame;
 }

@@ -65,20 +65,64 @@ void expectMatchesZBuffer(const Scene& scene, int w, int h, std::initializer_lis
   }
 }
 
+constexpr PvlRender kPvlRenders[] = {PvlRender::kNative, PvlRender::kGl};
+
+LzbOptions pvlOptions(PvlRender render) {
+  LzbOptions o;
+  o.pvlRender = render;
+  return o;
+}
+
 TEST(LzbRenderer, EveryStageMatchesZBufferOnTheCity) {
   const Scene scene = loadScene("builtin:city?blocks=4", true);
   // Frame 0 is at street level inside the city (the camera inside the octrees); frame 1 sees
   // it from outside.
   const Camera street = pathFrame(scene, 0, 4, 192, 144);
   ASSERT_TRUE(scene.bounds().contains(street.position()));
-  expectMatchesZBuffer(scene, 192, 144, {0, 1});
+  for (PvlRender render : kPvlRenders) {
+    SCOPED_TRACE(toString(render));
+    expectMatchesZBuffer(scene, 192, 144, {0, 1}, {std::begin(kStages), std::end(kStages)},
+                         pvlOptions(render));
+  }
 }
 
 TEST(LzbRenderer, EveryStageMatchesZBufferOnInstancedScenes) {
   // Rotated, non-uniformly scaled instances three levels deep; a sphereflake (one sphere node
   // reached along 91 instance paths, three levels).
-  expectMatchesZBuffer(testing::nestedScene(21), 160, 120, {0, 2});
-  expectMatchesZBuffer(loadScene("builtin:sphereflake?depth=2", true), 160, 120, {0, 1});
+  for (PvlRender render : kPvlRenders) {
+    SCOPED_TRACE(toString(render));
+    const std::vector<LzbStage> all(std::begin(kStages), std::end(kStages));
+    expectMatchesZBuffer(testing::nestedScene(21), 160, 120, {0, 2}, all, pvlOptions(render));
+    expectMatchesZBuffer(loadScene("builtin:sphereflake?depth=2", true), 160, 120, {0, 1}, all,
+                         pvlOptions(render));
+  }
+}
+
+// The native PVL z-buffer and OSMesa's agree on the IDs (both are exact z-buffers; they may
+// differ on a few pixel centres lying on an edge) and closely on the depths.
+TEST(LzbRenderer, NativeAndGlPvlRenderingAgree) {
+  const Scene scene = loadScene("builtin:city?blocks=4", true);
+  for (int f : {0, 1, 2}) {
+    const Camera cam = pathFrame(scene, f, 4, 192, 144);
+    LzbRenderer native(scene, testing::lzbRenderOptions(), pvlOptions(PvlRender::kNative));
+    LzbRenderer gl(scene, testing::lzbRenderOptions(), pvlOptions(PvlRender::kGl));
+    const Framebuffer a = renderFrame(native, cam), b = renderFrame(gl, cam);
+    ASSERT_GT(native.lastFrame().pvl.triangles, 0u) << f;
+    long same = 0, differ = 0;
+    for (uint32_t i : native.lastFrame().castPixels) {
+      if (a.id[i] != b.id[i]) {
+        ++differ;
+        continue;
+      }
+      ++same;
+      if (a.id[i] != kNoId) {
+        EXPECT_NEAR(a.depth[i], b.depth[i], 1e-4 * b.depth[i]) << f << " " << i;
+      }
+    }
+    EXPECT_GT(same, 0) << f;
+    EXPECT_LE(differ, long(a.size() / 1000)) << f;
+    EXPECT_GE(compare(a, b).exactIdRate, 0.999) << f;
+  }
 }
 
 TEST(LzbRenderer, PvlStagesMatchZBufferOnAForest) {
@@ -210,31 +254,36 @@ TEST(LzbRenderer, RaysParallelToOctreePlanes) {
 TEST(LzbRenderer, SameImageForAnyRankAndThreadCount) {
   const Scene scene = loadScene("builtin:city?blocks=3", true);
   const Camera cam = pathFrame(scene, 0, 4, 100, 70);  // partial tiles on both edges
-  for (LzbStage stage : {LzbStage::kNaive, LzbStage::kLazy, LzbStage::kFinal}) {
-    LzbRenderer one(scene, testing::lzbRenderOptions(1), stageOptions(stage));
-    LzbRenderer two(scene, testing::lzbRenderOptions(2), stageOptions(stage));
-    const Framebuffer single = renderFrame(one, cam);
-    const Framebuffer threads = renderFrame(two, cam);
-    EXPECT_EQ(threads.id, single.id) << toString(stage);
-    EXPECT_EQ(threads.depth, single.depth) << toString(stage);
-    for (int size : {2, 3}) {
-      LzbRenderer ranks(scene, testing::lzbRenderOptions(2), stageOptions(stage));
-      Framebuffer composite(cam.width(), cam.height());
-      double rays = 0.0;
-      for (int rank = 0; rank < size; ++rank) {
-        FrameStats stats;
-        compositeNearer(composite, renderFrame(ranks, cam, {rank, size}, &stats));
-        rays += stats.counts.value("rays_cast", 0.0);
-        // Shared counts come from rank 0 only, so sums over ranks stay right.
-        EXPECT_EQ(stats.counts.contains("plane_depth"), rank == 0);
+  for (PvlRender render : kPvlRenders)
+    for (LzbStage stage : {LzbStage::kNaive, LzbStage::kLazy, LzbStage::kFinal}) {
+      if (stage == LzbStage::kNaive && render == PvlRender::kGl) continue;  // no PVL
+      SCOPED_TRACE(toString(render));
+      LzbOptions o = stageOptions(stage);
+      o.pvlRender = render;
+      LzbRenderer one(scene, testing::lzbRenderOptions(1), o);
+      LzbRenderer two(scene, testing::lzbRenderOptions(2), o);
+      const Framebuffer single = renderFrame(one, cam);
+      const Framebuffer threads = renderFrame(two, cam);
+      EXPECT_EQ(threads.id, single.id) << toString(stage);
+      EXPECT_EQ(threads.depth, single.depth) << toString(stage);
+      for (int size : {2, 3}) {
+        LzbRenderer ranks(scene, testing::lzbRenderOptions(2), o);
+        Framebuffer composite(cam.width(), cam.height());
+        double rays = 0.0;
+        for (int rank = 0; rank < size; ++rank) {
+          FrameStats stats;
+          compositeNearer(composite, renderFrame(ranks, cam, {rank, size}, &stats));
+          rays += stats.counts.value("rays_cast", 0.0);
+          // Shared counts come from rank 0 only, so sums over ranks stay right.
+          EXPECT_EQ(stats.counts.contains("plane_depth"), rank == 0);
+        }
+        EXPECT_EQ(composite.id, single.id) << toString(stage) << " on " << size << " ranks";
+        EXPECT_EQ(composite.depth, single.depth) << toString(stage) << " on " << size << " ranks";
+        FrameStats alone;
+        renderFrame(one, cam, {}, &alone);
+        EXPECT_EQ(rays, alone.counts.value("rays_cast", -1.0));
       }
-      EXPECT_EQ(composite.id, single.id) << toString(stage) << " on " << size << " ranks";
-      EXPECT_EQ(composite.depth, single.depth) << toString(stage) << " on " << size << " ranks";
-      FrameStats alone;
-      renderFrame(one, cam, {}, &alone);
-      EXPECT_EQ(rays, alone.counts.value("rays_cast", -1.0));
     }
-  }
 }
 
 TEST(LzbRenderer, ReportsStagesAndCounts) {
