@@ -21,6 +21,24 @@ std::vector<size_t> pathLeafRanges(const CulledScene& culled) {
   return begin;
 }
 
+// The list of one placement: the triangles collected in `set`, which take() empties for reuse.
+DrawList placedList(uint32_t node, const glm::dmat4& world, uint64_t idBase, TriangleSet& set) {
+  DrawList out{node, world, idBase, {}};
+  set.take(out.triangles);
+  return out;
+}
+
+// The non-empty lists, in their order, with their triangle total.
+DrawLists nonEmpty(std::vector<DrawList>& lists) {
+  DrawLists result;
+  for (DrawList& l : lists)
+    if (!l.triangles.empty()) {
+      result.triangles += l.triangles.size();
+      result.lists.push_back(std::move(l));
+    }
+  return result;
+}
+
 }  // namespace
 
 bool DrawLists::contains(uint64_t id) const {
@@ -53,19 +71,10 @@ DrawLists nearScene(const LzbAccel& accel, const CulledScene& culled, double zCl
           for (uint32_t t : a.leafTriangles(l.leaf)) nearSet.add(t);
         if (l.depthMax > zClip) far += a.leafTriangles(l.leaf).size();
       }
-      DrawList& out = lists[size_t(p)];
-      out.node = path.node;
-      out.world = path.world;
-      out.idBase = path.idBase;
-      nearSet.take(out.triangles);
+      lists[size_t(p)] = placedList(path.node, path.world, path.idBase, nearSet);
     }
   }
-  DrawLists result;
-  for (DrawList& l : lists)
-    if (!l.triangles.empty()) {
-      result.triangles += l.triangles.size();
-      result.lists.push_back(std::move(l));
-    }
+  DrawLists result = nonEmpty(lists);
   for (const CullLeaf& l : culled.leaves) result.leaves += l.depthMin < zClip;
   if (farTriangles) *farTriangles = far;
   return result;
@@ -119,20 +128,11 @@ DrawLists mergePvl(const LzbAccel& accel, std::span<const PvlPart> parts, int th
           ++leafCount[size_t(p)];
           for (uint32_t t : a.leafTriangles(leaf)) set.add(t);
         }
-      DrawList& out = lists[size_t(p)];
-      out.node = pl.node;
-      out.world = pl.world;
-      out.idBase = pl.idBase;
-      set.take(out.triangles);
+      lists[size_t(p)] = placedList(pl.node, pl.world, pl.idBase, set);
     }
   }
-  DrawLists result;
-  for (size_t p = 0; p < lists.size(); ++p) {
-    result.leaves += leafCount[p];
-    if (lists[p].triangles.empty()) continue;
-    result.triangles += lists[p].triangles.size();
-    result.lists.push_back(std::move(lists[p]));
-  }
+  DrawLists result = nonEmpty(lists);
+  for (uint64_t n : leafCount) result.leaves += n;
   return result;
 }
 

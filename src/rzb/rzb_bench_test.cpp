@@ -305,8 +305,9 @@ TEST(RzbBench, Table1) {
                           {"setup_s", r.sampleScene().stats().buildSeconds},
                           {"tree_bytes", r.sampleScene().stats().memoryBytes}};
       if (withZ) {
-        j["correct_3x3"] = compare(fb, ref).correctPixelRate;
-        j["psnr"] = compare(fb, ref).psnr;
+        const auto accuracy = compare(fb, ref);
+        j["correct_3x3"] = accuracy.correctPixelRate;
+        j["psnr"] = accuracy.psnr;
       }
       std::printf("BENCH %s\n", j.dump().c_str());
     }
