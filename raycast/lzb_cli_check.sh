@@ -7,16 +7,18 @@ set -euo pipefail
 lzb="$1" work="$2"
 rm -rf "$work" && mkdir -p "$work"
 
-for run in naive lazy selective oor final final:gl; do
-  stage="${run%%:*}" render=native out="$work/${run/:/-}"
-  [ "$run" = "${run#*:}" ] || render="${run#*:}"
-  "$lzb" render "builtin:city?blocks=4" --method lzb --lzb-stage "$stage" --pvl-render "$render" \
-    --reference zbuffer --frames 2 --width 192 --height 144 --threads 2 --quiet --out "$out" \
-    >/dev/null
-  python3 - "$out/report.json" "$stage" "$render" <<'PY'
+# stage[:near z-buffer:PVL z-buffer]
+for run in naive lazy selective oor final final:gl:gl final:gl:native final:native:gl naive:gl; do
+  IFS=: read -r stage near render <<<"$run"
+  near="${near:-native}" render="${render:-native}" out="$work/${run//:/-}"
+  "$lzb" render "builtin:city?blocks=4" --method lzb --lzb-stage "$stage" --near-render "$near" \
+    --pvl-render "$render" --reference zbuffer --frames 2 --width 192 --height 144 --threads 2 \
+    --quiet --out "$out" >/dev/null
+  python3 - "$out/report.json" "$stage" "$near" "$render" <<'PY'
 import json, sys
-report, stage, render = json.load(open(sys.argv[1])), sys.argv[2], sys.argv[3]
+report, stage, near, render = json.load(open(sys.argv[1])), *sys.argv[2:]
 assert report["method_parameters"]["stage"] == stage, report["method_parameters"]
+assert report["method_parameters"]["near_render"] == near, report["method_parameters"]
 if stage != "naive":
     assert report["method_parameters"]["pvl_render"] == render, report["method_parameters"]
 for f in report["frames"]:
@@ -32,7 +34,7 @@ for f in report["frames"]:
         for key in ("octree_nodes_visited", "ray_triangle_tests", "pvl_size"):
             assert key in c, (stage, key)
         assert "pvl_find" in s and "pvl_render" in s, stage
-print("ok:", stage, render, [round(f["accuracy"]["exact_id_rate"], 5) for f in report["frames"]])
+print("ok:", stage, near, render, [round(f["accuracy"]["exact_id_rate"], 5) for f in report["frames"]])
 PY
 done
 
@@ -59,3 +61,4 @@ bad "--occluder-mode" --occluder-mode random
 bad "--plane-grid" --plane-grid 0
 bad "--lzb-walk" --lzb-walk sideways
 bad "--pvl-render" --pvl-render vulkan
+bad "--near-render" --near-render opengl

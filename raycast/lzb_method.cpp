@@ -15,6 +15,7 @@ struct LzbArgs {
   std::string plane = "cost";
   std::string occluderMode = "dynamic";
   std::string walk;  // empty: the stage's own
+  std::string nearRender = "native";
   std::string pvlRender = "native";
   LzbOptions options;
 };
@@ -48,9 +49,12 @@ void addOptions(CLI::App& c) {
   c.add_option("--lzb-walk", a.walk,
                "lzb: ray-octree walk: topdown | coherent (default: coherent for final, else "
                "topdown)");
+  c.add_option("--near-render", a.nearRender,
+               "lzb: how the near scene is z-buffered: native (multithreaded) | gl (OSMesa)")
+      ->capture_default_str();
   c.add_option("--pvl-render", a.pvlRender,
                "lzb: how the PVL is z-buffered: native (multithreaded, only at the unfinished "
-               "pixels) | gl (OSMesa, into the near pass's z-buffer)")
+               "pixels) | gl (OSMesa; into the near pass's z-buffer when that is gl too)")
       ->capture_default_str();
   c.add_option("--lzb-depth-complexity", o.depthComplexityGrid,
                "lzb diagnostic: count every surface along N x N rays per frame (reported as "
@@ -71,7 +75,8 @@ void validateArgs() {
   o.occluderMode = parseOccluderMode(a.occluderMode, "--occluder-mode");
   o.walkOverride = !a.walk.empty();
   if (o.walkOverride) o.walk = parseOctreeWalk(a.walk, "--lzb-walk");
-  o.pvlRender = parsePvlRender(a.pvlRender, "--pvl-render");
+  o.nearRender = parseZBufferKind(a.nearRender, "--near-render");
+  o.pvlRender = parseZBufferKind(a.pvlRender, "--pvl-render");
   validate(o);
 }
 
@@ -87,6 +92,7 @@ nlohmann::json parameters() {
     j["plane_grid"] = o.planeGrid;
     j["plane_reuse"] = o.planeReuse;
   }
+  j["near_render"] = toString(o.nearRender);
   if (o.usesPvl()) j["pvl_render"] = toString(o.pvlRender);
   if (o.usesOccluders()) {
     j["occluders"] = o.occluders;

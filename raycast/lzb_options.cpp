@@ -29,8 +29,8 @@ constexpr OccluderMode kModes[] = {OccluderMode::kStatic, OccluderMode::kDynamic
                                    OccluderMode::kHybrid};
 constexpr const char* kWalkNames[] = {"topdown", "coherent"};
 constexpr OctreeWalk kWalks[] = {OctreeWalk::kTopDown, OctreeWalk::kCoherent};
-constexpr const char* kPvlRenderNames[] = {"native", "gl"};
-constexpr PvlRender kPvlRenders[] = {PvlRender::kNative, PvlRender::kGl};
+constexpr const char* kZBufferKindNames[] = {"native", "gl"};
+constexpr ZBufferKind kZBufferKinds[] = {ZBufferKind::kNative, ZBufferKind::kGl};
 
 }  // namespace
 
@@ -46,8 +46,8 @@ OctreeWalk parseOctreeWalk(const std::string& text, const std::string& field) {
   return parseName(text, field, kWalkNames, kWalks);
 }
 
-PvlRender parsePvlRender(const std::string& text, const std::string& field) {
-  return parseName(text, field, kPvlRenderNames, kPvlRenders);
+ZBufferKind parseZBufferKind(const std::string& text, const std::string& field) {
+  return parseName(text, field, kZBufferKindNames, kZBufferKinds);
 }
 
 void parsePlane(const std::string& text, const std::string& field, LzbOptions& options) {
@@ -74,8 +74,8 @@ std::string toString(OccluderMode mode) {
 std::string toString(OctreeWalk walk) {
   return kWalkNames[int(walk)];
 }
-std::string toString(PvlRender render) {
-  return kPvlRenderNames[int(render)];
+std::string toString(ZBufferKind kind) {
+  return kZBufferKindNames[int(kind)];
 }
 
 void validate(const LzbOptions& o) {

@@ -22,9 +22,9 @@ enum class OccluderMode { kStatic, kDynamic, kHybrid };
 // starting from the previous ray's start leaf (see lzb_ray_walk.hpp).
 enum class OctreeWalk { kTopDown, kCoherent };
 
-// How the PVL is z-buffered: the project's native sparse z-buffer at the unfinished pixels only
-// (lzb_pvl_raster.hpp), or OSMesa into the near pass's GL z-buffer.
-enum class PvlRender { kNative, kGl };
+// Which z-buffer draws a pass (near scene, PVL): the project's native multithreaded z-buffer
+// (lzb_native_raster.hpp; the PVL only at the unfinished pixels), or OSMesa.
+enum class ZBufferKind { kNative, kGl };
 
 struct LzbOptions {
   LzbStage stage = LzbStage::kFinal;
@@ -38,8 +38,9 @@ struct LzbOptions {
   int instanceLeafEntries = 8;  // leaf limit for nodes with more instances than triangles
   bool walkOverride = false;    // use `walk` instead of the stage's own octree walk
   OctreeWalk walk = OctreeWalk::kCoherent;
-  PvlRender pvlRender = PvlRender::kNative;  // faster on the paper experiment (LZB.md)
-  int depthComplexityGrid = 0;               // diagnostic: G x G rays count every surface (0: off)
+  ZBufferKind nearRender = ZBufferKind::kNative;  // faster on the paper experiment (LZB.md)
+  ZBufferKind pvlRender = ZBufferKind::kNative;   // faster on the paper experiment (LZB.md)
+  int depthComplexityGrid = 0;  // diagnostic: G x G rays count every surface (0: off)
 
   bool dynamicPlane() const { return planeFraction == 0.0; }
   bool usesPvl() const { return stage != LzbStage::kNaive; }
@@ -55,14 +56,14 @@ struct LzbOptions {
 LzbStage parseLzbStage(const std::string& text, const std::string& field);
 OccluderMode parseOccluderMode(const std::string& text, const std::string& field);
 OctreeWalk parseOctreeWalk(const std::string& text, const std::string& field);
-PvlRender parsePvlRender(const std::string& text, const std::string& field);
+ZBufferKind parseZBufferKind(const std::string& text, const std::string& field);
 // --plane: "auto" (dynamic, mean depth), "cost" (dynamic, cost model) or a fraction in (0, 1)
 // (static); sets planeFraction and costPlane.
 void parsePlane(const std::string& text, const std::string& field, LzbOptions& options);
 std::string toString(LzbStage stage);
 std::string toString(OccluderMode mode);
 std::string toString(OctreeWalk walk);
-std::string toString(PvlRender render);
+std::string toString(ZBufferKind kind);
 
 // Throws InputError naming the option (CLI spelling) for an out-of-range value.
 void validate(const LzbOptions& options);

@@ -28,11 +28,12 @@ TEST(LzbOptions, ParsesEveryStageModeAndWalk) {
   EXPECT_EQ(parseLzbStage("final", "--lzb-stage"), LzbStage::kFinal);
   EXPECT_EQ(parseOccluderMode("dynamic", "--occluder-mode"), OccluderMode::kDynamic);
   EXPECT_EQ(parseOctreeWalk("topdown", "--lzb-walk"), OctreeWalk::kTopDown);
-  EXPECT_EQ(parsePvlRender("native", "--pvl-render"), PvlRender::kNative);
-  EXPECT_EQ(parsePvlRender("gl", "--pvl-render"), PvlRender::kGl);
-  EXPECT_EQ(toString(PvlRender::kGl), "gl");
-  EXPECT_EQ(LzbOptions{}.pvlRender, PvlRender::kNative);
-  const std::string bad = inputError([] { parsePvlRender("vulkan", "--pvl-render"); });
+  EXPECT_EQ(parseZBufferKind("native", "--pvl-render"), ZBufferKind::kNative);
+  EXPECT_EQ(parseZBufferKind("gl", "--pvl-render"), ZBufferKind::kGl);
+  EXPECT_EQ(toString(ZBufferKind::kGl), "gl");
+  EXPECT_EQ(LzbOptions{}.pvlRender, ZBufferKind::kNative);
+  EXPECT_EQ(LzbOptions{}.nearRender, ZBufferKind::kNative);
+  const std::string bad = inputError([] { parseZBufferKind("vulkan", "--pvl-render"); });
   EXPECT_NE(bad.find("--pvl-render"), std::string::npos) << bad;
   EXPECT_NE(bad.find("native, gl"), std::string::npos) << bad;
   for (LzbStage s :

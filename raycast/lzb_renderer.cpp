@@ -125,20 +125,23 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
   const DrawLists nearLists = nearScene(*accel_, culled, zClip, threads, &farTriangles);
   Framebuffer& nearFb = last_.nearPass;
   nearFb.resize(fb.width, fb.height);
-  // With a PVL to come, the pass set stays open: the PVL is drawn into the same z-buffer.
+  // With a GL PVL to come after a GL near pass, the pass set stays open: the PVL is drawn into
+  // the same z-buffer.
   bool passOpen = false;
-  const bool glPvl = lzb_.usesPvl() && lzb_.pvlRender == PvlRender::kGl;
+  const bool glPvl = lzb_.usesPvl() && lzb_.pvlRender == ZBufferKind::kGl;
   if (nearLists.triangles > 0 && zClip > camera.nearPlane()) {
-    raster_->begin(camera, zClip);
-    drawLists(*raster_, scene_, nearLists);
-    if (glPvl) {
-      raster_->read(nearFb);
-      passOpen = true;
+    if (lzb_.nearRender == ZBufferKind::kNative) {
+      native_.draw(scene_, camera, nearLists, {}, threads, nearFb, zClip);
     } else {
-      raster_->end(nearFb);
+      raster_->begin(camera, zClip);
+      drawLists(*raster_, scene_, nearLists);
+      if (glPvl) {
+        raster_->read(nearFb);
+        passOpen = true;
+      } else {
+        raster_->end(nearFb);
+      }
     }
-  } else {
-    nearFb.clear();
   }
   stats.addStage("near", clock.lap());
 
@@ -171,13 +174,15 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
   }
   const TileCastInput input{&camera, &nearFb, tMin, camera.farPlane(), oor};
   Framebuffer& farFb = farPass_;
-  bool combined = false;  // fb already holds the near pass and the far scene
+  bool combined = false;     // fb already holds the near pass and the far scene
+  bool farApart = false;     // farFb holds the far scene, to be composited with the near pass
   TileCastCounts tileCounts;
   const long count = unfinished > 0 ? long(mine.size()) : 0;
   std::vector<std::vector<uint32_t>> tilePixels;
   tilePixels.resize(size_t(count));
   if (!lzb_.usesPvl()) {
     farFb.resize(fb.width, fb.height);  // and clears
+    farApart = true;
 #pragma omp parallel num_threads(threads)
     {
       std::vector<uint8_t> mask;
@@ -228,16 +233,18 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
       // unfinished pixel, so the ranks' composite is the 1-rank image.
       fb.depth = nearFb.depth;
       fb.id = nearFb.id;
-      pvlRaster_.draw(scene_, camera, last_.pvl, open_, threads, fb);
+      native_.draw(scene_, camera, last_.pvl, open_, threads, fb);
       combined = true;
-    } else if (last_.pvl.triangles > 0) {
-      if (passOpen)
-        raster_->setFarClip(0.0);
-      else
-        raster_->begin(camera, 0.0);
+    } else if (last_.pvl.triangles > 0 && passOpen) {
+      raster_->setFarClip(0.0);
       drawLists(*raster_, scene_, last_.pvl);
       raster_->end(fb);
       combined = true;
+    } else if (last_.pvl.triangles > 0) {  // a pass of its own, composited below
+      raster_->begin(camera, 0.0);
+      drawLists(*raster_, scene_, last_.pvl);
+      raster_->end(farFb);
+      farApart = true;
     }
     stats.addStage("pvl_render", clock.lap());
   }
@@ -248,7 +255,7 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
   if (!combined) {
     fb.depth = nearFb.depth;
     fb.id = nearFb.id;
-    if (!lzb_.usesPvl()) compositeNearer(fb, farFb);
+    if (farApart) compositeNearer(fb, farFb);
   }
   shadeFromIds(scene_, camera, fb);
   stats.addStage("shade", clock.lap());
@@ -299,7 +306,7 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
     stats.addCount("pvl_leaves", double(last_.pvl.leaves));
     // Triangles (pieces, after clipping) that may cover a pixel centre of the image.
     if (nativePvl && combined)
-      stats.addCount("pvl_raster_triangles", double(pvlRaster_.counts().setUp));
+      stats.addCount("pvl_raster_triangles", double(native_.counts().setUp));
   }
   (void)frame;
 }

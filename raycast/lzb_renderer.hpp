@@ -2,13 +2,14 @@
 // --method lzb: local z-buffering (Han & Zeiger, sections II-III; see raycast/LZB.md).
 //
 // Per frame: (1) hierarchical frustum culling of the octrees; (2) the partition plane z_clip;
-// (3) the near scene (culled leaves in front of the plane) by z-buffer clipped at z_clip;
-// (4) the unfinished pixels (left empty by the near pass); (5) the far scene by the chosen stage:
-// naive Embree rays (combined with the near pass by compositeNearer), or PVL finding by the own
-// octree walk (lazy / selective / OOR / final) and the PVL z-buffered on top of the near pass
-// (near scene first, so on an exact depth tie between two triangles the near one stays): by the
-// native sparse z-buffer at the unfinished pixels (--pvl-render native), or unclipped into the
-// near pass's GL z-buffer (gl); colour by shadeFromIds.
+// (3) the near scene (culled leaves in front of the plane) by z-buffer clipped at z_clip: the
+// native z-buffer (--near-render native) or OSMesa (gl); (4) the unfinished pixels (left empty
+// by the near pass); (5) the far scene by the chosen stage: naive Embree rays (combined with the
+// near pass by compositeNearer), or PVL finding by the own octree walk (lazy / selective / OOR /
+// final) and the PVL z-buffered on top of the near pass (near scene first, so on an exact depth
+// tie between two triangles the near one stays): by the native sparse z-buffer at the unfinished
+// pixels (--pvl-render native), or by OSMesa (gl: unclipped into the near pass's GL z-buffer, or
+// a pass of its own composited by (depth, ID) after a native near pass); colour by shadeFromIds.
 //
 // Ranks: every rank renders the near pass (cheap) and so knows the unfinished pixels and keeps
 // the same plane state; each casts rays only in its screen tiles (tile % size == rank) and draws
@@ -24,7 +25,7 @@
 #include "raycast/lzb_oor.hpp"
 #include "raycast/lzb_options.hpp"
 #include "raycast/lzb_plane.hpp"
-#include "raycast/lzb_pvl_raster.hpp"
+#include "raycast/lzb_native_raster.hpp"
 #include "raycast/lzb_ray_walk.hpp"
 #include "src/core/renderer.hpp"
 #include "src/zbuffer/triangle_rasterizer.hpp"
@@ -68,7 +69,7 @@ class LzbRenderer : public Renderer {
   std::vector<PvlPart> parts_;  // one per owned tile
   CulledScene culled_;
   std::unique_ptr<OorObjects> oor_;
-  PvlRasterizer pvlRaster_;    // --pvl-render native
+  NativeRasterizer native_;    // --near-render / --pvl-render native
   std::vector<uint8_t> open_;  // native: the near pass's unfinished pixels
   Framebuffer farPass_;
   FrameDetail last_;

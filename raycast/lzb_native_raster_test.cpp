@@ -1,4 +1,4 @@
-#include "raycast/lzb_pvl_raster.hpp"
+#include "raycast/lzb_native_raster.hpp"
 
 #include <gtest/gtest.h>
 
@@ -171,7 +171,7 @@ void expectSameAsGl(const OneMesh& m, const Camera& cam, const glm::dmat4& world
     gl.drawList(l.node, l.world, l.triangles, l.idBase);
   gl.end(ref);
   Framebuffer img(cam.width(), cam.height());
-  PvlRasterizer native;
+  NativeRasterizer native;
   native.draw(m.scene, cam, m.lists(world), {}, threads, img);
   long differ = 0, n = 0;
   for (size_t i = 0; i < img.size(); ++i) {
@@ -199,7 +199,7 @@ TEST(PvlRaster, ClipsATriangleCrossingTheNearPlaneLikeOsMesa) {
   long covered = 0;
   expectSameAsGl(m, cam, glm::dmat4(1.0), 2, 10, &covered);
   EXPECT_GT(covered, 500);
-  PvlRasterizer native;
+  NativeRasterizer native;
   Framebuffer img(96, 72);
   native.draw(m.scene, cam, m.lists(), {}, 1, img);
   EXPECT_EQ(native.counts().clipped, 1u);
@@ -264,7 +264,7 @@ TEST(PvlRaster, SameImageForAnyThreadCountAndOrder) {
   const OneMesh m(tris);
   const Camera cam = lookDownZ(glm::dvec3(0.0), 70, 50);
   Framebuffer one(70, 50), three(70, 50);
-  PvlRasterizer r;
+  NativeRasterizer r;
   r.draw(m.scene, cam, m.lists(), {}, 1, one);
   r.draw(m.scene, cam, m.lists(), {}, 3, three);
   EXPECT_EQ(one.id, three.id);

@@ -1,9 +1,11 @@
 #pragma once
-// Native PVL rendering (`--pvl-render native`): a multithreaded software z-buffer that draws the
-// potentially visible list only at the "open" pixels (the near pass's unfinished pixels; every
-// ray-cast pixel is one, and a PVL triangle can cover no other unfinished pixel than a ray-cast
-// one except by rounding at the edge of a projected object). Finished pixels keep their near
-// pass: the near pass shows the exact nearest surface there.
+// The native z-buffer (`--near-render native`, `--pvl-render native`): a multithreaded software
+// z-buffer. The near pass draws the near scene at every pixel, clipped per fragment at the
+// partition plane; the PVL pass draws the potentially visible list only at the "open" pixels (the
+// near pass's unfinished pixels; every ray-cast pixel is one, and a PVL triangle can cover no
+// other unfinished pixel than a ray-cast one except by rounding at the edge of a projected
+// object). Finished pixels keep their near pass: the near pass shows the exact nearest surface
+// there.
 //
 // Per pixel it keeps the minimum of (depth, ID), as Framebuffer::keepNearer, so the result does
 // not depend on the order of triangles, the thread count or the split of the PVL over ranks
@@ -68,26 +70,27 @@ uint64_t rasterizeTriangle(const RasterTriangle& t, int rowBegin, int rowEnd, co
 void clipAndProject(const glm::dvec3 (&view)[3], double nearDepth, double scale, int width,
                     int height, std::vector<std::array<ScreenVertex, 3>>& out);
 
-struct PvlRasterCounts {
+struct NativeRasterCounts {
   uint64_t triangles = 0;  // triangles of the lists
   uint64_t setUp = 0;      // screen triangles that may cover a pixel centre (after clipping)
   uint64_t clipped = 0;    // triangles that needed clipping (near plane or guard band)
   uint64_t fragments = 0;  // fragments written (passed the depth test; depends on the order)
 };
 
-// Draws draw lists (the PVL) into fb at open pixels. Keeps its per-thread bins between frames.
-class PvlRasterizer {
+// Draws draw lists into fb at open pixels. Keeps its per-thread bins between frames.
+class NativeRasterizer {
  public:
-  // open: one byte per pixel of fb (fb.index order), nonzero where triangles may be drawn.
+  // open: one byte per pixel of fb (fb.index order), nonzero where triangles may be drawn; empty:
+  // every pixel. Fragments deeper than farClip (0: the camera's far plane) are dropped.
   void draw(const Scene& scene, const Camera& camera, const DrawLists& lists,
-            std::span<const uint8_t> open, int threads, Framebuffer& fb);
-  const PvlRasterCounts& counts() const { return counts_; }
+            std::span<const uint8_t> open, int threads, Framebuffer& fb, double farClip = 0.0);
+  const NativeRasterCounts& counts() const { return counts_; }
 
   static constexpr int kBandRows = 16;  // rows per band: the unit of threads in rasterization
 
  private:
   std::vector<std::vector<std::vector<RasterTriangle>>> bins_;  // [thread][band]
-  PvlRasterCounts counts_;
+  NativeRasterCounts counts_;
 };
 
 }  // namespace lzb

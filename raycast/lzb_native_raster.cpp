@@ -1,4 +1,4 @@
-#include "raycast/lzb_pvl_raster.hpp"
+#include "raycast/lzb_native_raster.hpp"
 
 #include <omp.h>
 
@@ -197,10 +197,11 @@ void clipAndProject(const glm::dvec3 (&view)[3], double nearDepth, double scale,
   for (int k = 1; k + 1 < n; ++k) out.push_back({s[0], s[k], s[k + 1]});
 }
 
-void PvlRasterizer::draw(const Scene& scene, const Camera& camera, const DrawLists& lists,
-                         std::span<const uint8_t> open, int threads, Framebuffer& fb) {
+void NativeRasterizer::draw(const Scene& scene, const Camera& camera, const DrawLists& lists,
+                            std::span<const uint8_t> open, int threads, Framebuffer& fb,
+                            double farClip) {
   if (!open.empty() && open.size() != fb.size())
-    throw std::invalid_argument("PvlRasterizer: open mask and framebuffer sizes differ");
+    throw std::invalid_argument("NativeRasterizer: open mask and framebuffer sizes differ");
   threads = std::max(threads, 1);
   counts_ = {};
   const int width = fb.width, height = fb.height;
@@ -227,7 +228,8 @@ void PvlRasterizer::draw(const Scene& scene, const Camera& camera, const DrawLis
   }
   const uint64_t total = first.back();
   counts_.triangles = total;
-  const double nearDepth = camera.nearPlane(), farDepth = camera.farPlane();
+  const double nearDepth = camera.nearPlane();
+  const double farDepth = farClip > 0.0 ? std::min(farClip, camera.farPlane()) : camera.farPlane();
   const double s = camera.pixelsPerUnitAt(1.0);
   const double loX = -kGuard, hiX = width + kGuard, loY = -kGuard, hiY = height + kGuard;
   constexpr uint64_t kChunk = 2048;
