@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <string>
 
 #include "src/core/error.hpp"
@@ -10,21 +11,35 @@ namespace lzb {
 
 namespace {
 
+InputError tooInstanced() {
+  return InputError("lzb: more than " + std::to_string(kMaxCullPaths) +
+                    " visible instances with triangles: too instanced for local z-buffering's "
+                    "per-leaf culling (use --method raycast)");
+}
+
+// A child instance to visit: its node, placement and ID base.
+struct ChildVisit {
+  uint32_t node;
+  glm::dmat4 world;
+  uint64_t idBase;
+};
+
 class Culler {
  public:
   Culler(const LzbAccel& accel, const Camera& camera)
       : accel_(accel), scene_(accel.scene()), camera_(camera), frustum_(camera.frustum()) {}
 
-  void visit(uint32_t node, const glm::dmat4& world, uint64_t idBase, CulledScene& out) {
+  // Culls node's octree into out and walks its visible instances, or, with `deferred`, lists
+  // them there (in instance order) for the caller to walk.
+  void visit(uint32_t node, const glm::dmat4& world, uint64_t idBase, CulledScene& out,
+             std::vector<ChildVisit>* deferred = nullptr) {
     const NodeAccel& a = accel_.node(node);
     if (a.empty()) return;
     const bool hasTriangles = !scene_.nodes[node].mesh.empty();
     uint32_t pathIndex = 0;
     if (hasTriangles) {
       if (out.paths.size() >= kMaxCullPaths)
-        throw InputError("lzb: more than " + std::to_string(kMaxCullPaths) +
-                         " visible instances with triangles: too instanced for local "
-                         "z-buffering's per-leaf culling (use --method raycast)");
+        throw tooInstanced();
       CullPath p;
       p.node = node;
       p.world = world;
@@ -62,7 +77,11 @@ class Culler {
       if (frustum_.classify(scene_.nodeBounds[inst.node].transformed(childWorld)) == Cull::kOutside)
         continue;
       ++out.instancesVisited;
-      visit(inst.node, childWorld, idBase + scene_.childOffset(node, i), out);
+      const uint64_t childBase = idBase + scene_.childOffset(node, i);
+      if (deferred)
+        deferred->push_back({inst.node, childWorld, childBase});
+      else
+        visit(inst.node, childWorld, childBase, out);
     }
   }
 
@@ -75,16 +94,45 @@ class Culler {
 
 }  // namespace
 
-void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out) {
+void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, int threads) {
   out.paths.clear();
   out.leaves.clear();
   out.instancesVisited = 0;
-  Culler(accel, camera).visit(accel.scene().root, glm::dmat4(1.0), 0, out);
+  Culler culler(accel, camera);
+  std::vector<ChildVisit> children;
+  culler.visit(accel.scene().root, glm::dmat4(1.0), 0, out, &children);
+  // The root's visible instances are walked in parallel, each into a part of its own; parts are
+  // appended in instance order, so the result is the serial walk's whatever the thread count.
+  std::vector<CulledScene> parts(children.size());
+  std::exception_ptr failure;
+  const long count = long(children.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(threads, 1)) if (count > 1)
+  for (long k = 0; k < count; ++k) {
+    try {
+      const ChildVisit& c = children[size_t(k)];
+      Culler(accel, camera).visit(c.node, c.world, c.idBase, parts[size_t(k)]);
+    } catch (...) {
+#pragma omp critical
+      if (!failure) failure = std::current_exception();
+    }
+  }
+  if (failure) std::rethrow_exception(failure);
+  for (const CulledScene& part : parts) {
+    const uint32_t offset = uint32_t(out.paths.size());
+    if (out.paths.size() + part.paths.size() > kMaxCullPaths)
+      throw tooInstanced();
+    out.paths.insert(out.paths.end(), part.paths.begin(), part.paths.end());
+    for (CullLeaf l : part.leaves) {
+      l.path += offset;
+      out.leaves.push_back(l);
+    }
+    out.instancesVisited += part.instancesVisited;
+  }
 }
 
-CulledScene cullScene(const LzbAccel& accel, const Camera& camera) {
+CulledScene cullScene(const LzbAccel& accel, const Camera& camera, int threads) {
   CulledScene out;
-  cullScene(accel, camera, out);
+  cullScene(accel, camera, out, threads);
   return out;
 }
 

@@ -40,8 +40,9 @@ struct CulledScene {
 // InputError; the ray casting methods handle such scenes).
 constexpr size_t kMaxCullPaths = size_t(1) << 22;
 
-CulledScene cullScene(const LzbAccel& accel, const Camera& camera);
+// The root's visible instances are culled on `threads` threads; the result does not depend on it.
+CulledScene cullScene(const LzbAccel& accel, const Camera& camera, int threads = 1);
 // The same into `out` (cleared first), reusing its memory frame after frame.
-void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out);
+void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, int threads = 1);
 
 }  // namespace lzb

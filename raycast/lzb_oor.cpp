@@ -153,8 +153,9 @@ void OorObjects::build(const LzbAccel& accel, const CulledScene& culled, const C
       const double depthMax = glm::dot(path.depthGrad, c.center()) + path.depthOffset +
                               glm::dot(glm::abs(path.depthGrad), 0.5 * c.extent());
       if (depthMax < clipDepth || local.classify(c) == Cull::kOutside) continue;
-      const ScreenPolygon poly = project(pr, c, camera, clipDepth);
+      ScreenPolygon poly = project(pr, c, camera, clipDepth);
       if (poly.x0 > poly.x1) continue;  // nothing behind the plane
+      poly.depthMax = depthMax;
       const Octree::Node& node = tree.node(n);
       if (node.leaf() ||
           (poly.x1 - poly.x0 <= kObjectPixels && poly.y1 - poly.y0 <= kObjectPixels)) {

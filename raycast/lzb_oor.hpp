@@ -28,6 +28,11 @@
 // Per pixel: the polygon's 2D bounding box first, then the point-in-convex-polygon test at the
 // pixel centre (edge functions, 1e-3 pixel tolerance outwards). A boolean mask per pixel records
 // that the pixel is cast already, so no pixel is cast twice.
+//
+// Each object also bounds how far its pixels' rays need to go: a ray can only hit far triangles
+// in the content boxes of objects whose polygons (so whose bounding boxes) hold its pixel, none
+// deeper than the deepest of those boxes (ScreenPolygon::depthMax). A ray that finds nothing
+// stops there instead of walking on to the far plane (see lzb_tile_cast.hpp).
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <span>
@@ -45,6 +50,7 @@ struct ScreenPolygon {
   // Bounding box, pixel coordinates (x right, y down); the default box is empty.
   float x0 = 1.0f, y0 = 1.0f, x1 = 0.0f, y1 = 0.0f;
   uint8_t count = 0;           // hull vertices; 0 with a valid box: the whole box (screen)
+  double depthMax = 0.0;       // OOR objects: the deepest view depth of the projected box
   glm::dvec2 v[kMaxVertices];  // hull, turning left in (x, y-down) coordinates
   bool contains(double x, double y) const;
 };

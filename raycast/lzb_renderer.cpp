@@ -103,7 +103,7 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
   last_.walk = {};
 
   // 1. Hierarchical view-frustum culling.
-  cullScene(*accel_, camera, culled_);
+  cullScene(*accel_, camera, culled_, threads);
   const CulledScene& culled = culled_;
   stats.addStage("cull", clock.lap());
 
@@ -148,14 +148,10 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
   // 4. Unfinished pixels.
   uint64_t unfinished = 0;
   const bool nativePvl = lzb_.usesPvl() && !glPvl;
-  if (nativePvl) {
-    open_.resize(nearFb.size());
-    for (size_t i = 0; i < nearFb.size(); ++i) {
-      open_[i] = nearFb.id[i] == kNoId;
-      unfinished += open_[i];
-    }
-  } else {
-    for (size_t i = 0; i < nearFb.size(); ++i) unfinished += nearFb.id[i] == kNoId;
+  open_.resize(nearFb.size());
+  for (size_t i = 0; i < nearFb.size(); ++i) {
+    open_[i] = nearFb.id[i] == kNoId;
+    unfinished += open_[i];
   }
   plane_.observe(unfinished);
   stats.addStage("unfinished", clock.lap());
@@ -172,7 +168,7 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
     oor = oor_.get();
     stats.addStage("oor_project", clock.lap());
   }
-  const TileCastInput input{&camera, &nearFb, tMin, camera.farPlane(), oor};
+  const TileCastInput input{&camera, open_.data(), tMin, camera.farPlane(), oor};
   Framebuffer& farFb = farPass_;
   bool combined = false;     // fb already holds the near pass and the far scene
   bool farApart = false;     // farFb holds the far scene, to be composited with the near pass
@@ -185,12 +181,12 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
     farApart = true;
 #pragma omp parallel num_threads(threads)
     {
-      std::vector<uint8_t> mask;
+      TileScratch scratch;
       TileCastCounts local;
 #pragma omp for schedule(dynamic, 1)
       for (long k = 0; k < count; ++k) {
         const int t = mine[size_t(k)];
-        castTileEmbree(*embree_, tiles.tile(t), t, input, mask, farFb, local,
+        castTileEmbree(*embree_, tiles.tile(t), t, input, scratch, farFb, local,
                        &tilePixels[size_t(k)]);
       }
 #pragma omp critical
@@ -203,13 +199,13 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
     for (long k = 0; k < count; ++k) parts_[size_t(k)].clear();
 #pragma omp parallel num_threads(threads)
     {
-      std::vector<uint8_t> mask;
+      TileScratch scratch;
       TileCastCounts local;
       RayWalker& walker = walkers_[size_t(omp_get_thread_num())];
 #pragma omp for schedule(dynamic, 1)
       for (long k = 0; k < count; ++k) {
         const int t = mine[size_t(k)];
-        castTilePvl(walker, tiles.tile(t), t, input, mask, parts_[size_t(k)], local,
+        castTilePvl(walker, tiles.tile(t), t, input, scratch, parts_[size_t(k)], local,
                     &tilePixels[size_t(k)]);
         parts_[size_t(k)].finish();
       }

@@ -70,7 +70,7 @@ class LzbRenderer : public Renderer {
   CulledScene culled_;
   std::unique_ptr<OorObjects> oor_;
   NativeRasterizer native_;    // --near-render / --pvl-render native
-  std::vector<uint8_t> open_;  // native: the near pass's unfinished pixels
+  std::vector<uint8_t> open_;  // the near pass's unfinished pixels (1), per pixel
   Framebuffer farPass_;
   FrameDetail last_;
   bool buildReported_ = false;

@@ -28,27 +28,38 @@ struct TileCastCounts {
 
 struct TileCastInput {
   const Camera* camera;
-  const Framebuffer* nearPass;  // unfinished pixel: id == kNoId
-  double tMin, tMax;            // ray interval (view depth): the partition plane to far
-  const OorObjects* oor;        // null: cast every unfinished pixel
+  const uint8_t* unfinished;  // per pixel (Framebuffer::index order): 1 unfinished, else 0
+  double tMin, tMax;          // ray interval (view depth): the partition plane to far
+  const OorObjects* oor;      // null: cast every unfinished pixel
 };
 
-// The pixels (framebuffer indices) of tile r to cast, in row order: unfinished and, with OOR,
-// inside a polygon binned to the tile.
-// mask: scratch of at least r.pixels() bytes.
-std::vector<uint32_t> tilePixelsToCast(const TileRect& r, int tileIndex, const TileCastInput& in,
-                                       std::vector<uint8_t>& mask, TileCastCounts& counts);
+// What a tile casts: pixels (framebuffer indices, row order) and each ray's far end.
+struct TileRays {
+  std::vector<uint32_t> pixels;
+  // View depth a ray needs to reach: with OOR the deepest depthMax of the polygons whose
+  // bounding boxes hold the pixel (slightly widened), else the input's tMax.
+  std::vector<double> reach;
+};
+
+// The rays of tile r: its unfinished pixels and, with OOR, only those inside a polygon binned
+// to the tile. scratch: reused between calls.
+struct TileScratch {
+  std::vector<uint8_t> mask;
+  std::vector<double> reach;
+};
+TileRays tileRaysToCast(const TileRect& r, int tileIndex, const TileCastInput& in,
+                        TileScratch& scratch, TileCastCounts& counts);
 
 // PVL finding for one tile with the walker (its coherence state is reset first). The pixels
 // cast go to *cast when given.
 void castTilePvl(RayWalker& walker, const TileRect& r, int tileIndex, const TileCastInput& in,
-                 std::vector<uint8_t>& mask, PvlPart& out, TileCastCounts& counts,
+                 TileScratch& scratch, PvlPart& out, TileCastCounts& counts,
                  std::vector<uint32_t>* cast = nullptr);
 
 // Naive LZB: classic ray casting (Embree packets) of the tile's unfinished pixels; hits go to
 // far (depth, id) at their pixels.
 void castTileEmbree(const EmbreeScene& embree, const TileRect& r, int tileIndex,
-                    const TileCastInput& in, std::vector<uint8_t>& mask, Framebuffer& far,
+                    const TileCastInput& in, TileScratch& scratch, Framebuffer& far,
                     TileCastCounts& counts, std::vector<uint32_t>* cast = nullptr);
 
 }  // namespace lzb

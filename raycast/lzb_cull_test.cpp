@@ -1,0 +1,40 @@
+#include "raycast/lzb_cull.hpp"
+
+#include <gtest/gtest.h>
+
+#include "raycast/lzb_test_util.hpp"
+
+namespace lzb {
+namespace {
+
+using testing::pathFrame;
+
+// The root's instances are culled in parallel; the parts are joined in instance order, so any
+// thread count lists the same paths and leaves in the same order.
+TEST(LzbCull, SameResultForAnyThreadCount) {
+  const Scene scene = loadScene("builtin:city?blocks=4", true);
+  const LzbAccel accel(scene, LzbAccelParams{});
+  for (int f : {0, 1}) {
+    const Camera cam = pathFrame(scene, f, 4, 160, 120);
+    const CulledScene one = cullScene(accel, cam, 1), two = cullScene(accel, cam, 2);
+    ASSERT_GT(one.paths.size(), 1u) << f;
+    ASSERT_EQ(one.paths.size(), two.paths.size()) << f;
+    for (size_t p = 0; p < one.paths.size(); ++p) {
+      EXPECT_EQ(one.paths[p].node, two.paths[p].node);
+      EXPECT_EQ(one.paths[p].idBase, two.paths[p].idBase);
+      if (p > 0) {
+        EXPECT_LT(one.paths[p - 1].idBase, one.paths[p].idBase) << "ascending idBase";
+      }
+    }
+    ASSERT_EQ(one.leaves.size(), two.leaves.size()) << f;
+    for (size_t l = 0; l < one.leaves.size(); ++l) {
+      EXPECT_EQ(one.leaves[l].path, two.leaves[l].path);
+      EXPECT_EQ(one.leaves[l].leaf, two.leaves[l].leaf);
+      EXPECT_EQ(one.leaves[l].depthMin, two.leaves[l].depthMin);
+    }
+    EXPECT_EQ(one.instancesVisited, two.instancesVisited);
+  }
+}
+
+}  // namespace
+}  // namespace lzb
