@@ -116,30 +116,21 @@ void RayWalker::resetCoherence() {
   std::fill(hint_.begin(), hint_.end(), kNone);
 }
 
+bool RayWalker::later(const Item& a, const Item& b) {
+  return a.tEnter > b.tEnter ||
+         (a.tEnter == b.tEnter && (a.ctx > b.ctx || (a.ctx == b.ctx && a.node > b.node)));
+}
+
 void RayWalker::push(const Item& item) {
   heap_.push_back(item);
-  std::push_heap(heap_.begin(), heap_.end(), [](const Item& a, const Item& b) {
-    return a.tEnter > b.tEnter ||
-           (a.tEnter == b.tEnter && (a.ctx > b.ctx || (a.ctx == b.ctx && a.node > b.node)));
-  });
+  std::push_heap(heap_.begin(), heap_.end(), later);
 }
 
 RayWalker::Item RayWalker::pop() {
-  std::pop_heap(heap_.begin(), heap_.end(), [](const Item& a, const Item& b) {
-    return a.tEnter > b.tEnter ||
-           (a.tEnter == b.tEnter && (a.ctx > b.ctx || (a.ctx == b.ctx && a.node > b.node)));
-  });
+  std::pop_heap(heap_.begin(), heap_.end(), later);
   const Item item = heap_.back();
   heap_.pop_back();
   return item;
-}
-
-void RayWalker::pushLeaf(uint32_t ctx, uint32_t leaf, double t0, double t1) {
-  const Octree& tree = accel_.node(ctx_[ctx].node).octree();
-  double c0 = t0, c1 = t1;
-  // Rounding may leave a grazed leaf without an interval: give it the entry point.
-  if (!ctx_[ctx].ray.clip(tree.nodeBox(leaf), c0, c1)) c0 = c1 = t0;
-  push({c0, c1, ctx, leaf});
 }
 
 void RayWalker::enter(uint32_t ctx, double t0, double t1) {
@@ -164,10 +155,12 @@ void RayWalker::enter(uint32_t ctx, double t0, double t1) {
     counts.climbs += uint64_t(climbed);
   }
   hint_[node] = leaf;
-  pushLeaf(ctx, leaf, e0, t1);
+  // The start leaf holds the entry point: the ray enters it at e0 (no clip, which rounding can
+  // push past e0; a leaf is queued by where the ray enters it, never later).
+  push({e0, t1, ctx, leaf});
 }
 
-bool RayWalker::step(const Item& item) {
+bool RayWalker::step(const Item& item, Item& next) {
   Context& c = ctx_[item.ctx];
   const NodeAccel& a = accel_.node(c.node);
   const Octree& tree = a.octree();
@@ -196,16 +189,16 @@ bool RayWalker::step(const Item& item) {
     if (axis < 0) return false;
     tx = std::max(tx, tEnter);
     if (tx > limit) return false;
-    const uint32_t next = a.ropes().rope(leaf, 2 * axis + (c.ray.d[axis] > 0.0 ? 1 : 0));
-    if (next == kNone) return false;  // the ray leaves this octree
+    const uint32_t neighbour = a.ropes().rope(leaf, 2 * axis + (c.ray.d[axis] > 0.0 ? 1 : 0));
+    if (neighbour == kNone) return false;  // the ray leaves this octree
     const glm::dvec3 p = c.ray.o + tx * c.ray.d;
-    leaf = descendAcross(tree, next, p, c.ray.d, axis);
+    leaf = descendAcross(tree, neighbour, p, c.ray.d, axis);
     ++counts.nodesVisited;
     if (tree.node(leaf).count == 0) {
       tEnter = tx;  // empty: step on without queueing
       continue;
     }
-    pushLeaf(item.ctx, leaf, tx, tMax_);
+    next = {tx, tMax_, item.ctx, leaf};  // entered across the face, at tx
     return true;
   }
 }
@@ -349,8 +342,14 @@ double RayWalker::cast(const glm::dvec3& origin, const glm::dvec3& dir, double t
                   len > 0.0 ? glm::vec3(dir / len) : glm::vec3(0.0f), -1,
                   walk_ == OctreeWalk::kCoherent, 0});
   enter(0, tMin, tMax);
-  while (!heap_.empty()) {
-    const Item item = pop();
+  Item item{};
+  bool held = false;  // item is the next to process (it precedes everything in the queue)
+  for (;;) {
+    if (!held) {
+      if (heap_.empty()) break;
+      item = pop();
+    }
+    held = false;
     if (item.tEnter > std::min(tBest_, tMax_)) break;  // every later leaf lies beyond the hit
     ++counts.nodesVisited;
     const Octree& tree = accel_.node(ctx_[item.ctx].node).octree();
@@ -367,7 +366,16 @@ double RayWalker::cast(const glm::dvec3& origin, const glm::dvec3& dir, double t
     }
     ++counts.leavesVisited;
     processLeaf(item.ctx, item.node, out);
-    if (ctx_[item.ctx].coherent) step(item);
+    Item next;
+    if (ctx_[item.ctx].coherent && step(item, next)) {
+      // The common case, one walk in the queue: the next leaf comes first, skip the queue.
+      if (heap_.empty() || !later(next, heap_.front())) {
+        item = next;
+        held = true;
+      } else {
+        push(next);
+      }
+    }
   }
   flush(out);
   if (std::isfinite(tBest_)) ++counts.hits;

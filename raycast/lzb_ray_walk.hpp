@@ -183,11 +183,13 @@ class RayWalker {
     uint32_t ctx, node;
   };
   void enter(uint32_t ctx, double t0, double t1);
-  void pushLeaf(uint32_t ctx, uint32_t leaf, double t0, double t1);
   void processLeaf(uint32_t ctx, uint32_t leaf, PvlPart& out);
   void record(uint32_t ctx, uint32_t leaf, PvlPart& out);
-  void flush(PvlPart& out);     // end of a ray: its traversed leaves into out
-  bool step(const Item& item);  // coherent: queue the next leaf along the ray
+  void flush(PvlPart& out);  // end of a ray: its traversed leaves into out
+  // Coherent: the next non-empty leaf along the ray into `next` (false: none before the limit,
+  // or the walk fell back to top-down and queued its root).
+  bool step(const Item& item, Item& next);
+  static bool later(const Item& a, const Item& b);  // queue order: (tEnter, ctx, node)
   void push(const Item& item);
   Item pop();
 
