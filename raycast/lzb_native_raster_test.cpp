@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <random>
 
@@ -281,6 +283,60 @@ TEST(PvlRaster, SameImageForAnyThreadCountAndOrder) {
   EXPECT_EQ(fa.id, one.id);
   EXPECT_EQ(fa.depth, one.depth);
   expectSameAsGl(m, cam, glm::dmat4(1.0), 2, 70 * 50 / 1000);
+}
+
+// The pixels and depths rasterizeTriangle writes, against a direct evaluation of every pixel of
+// the box (exact edge functions with the tie rule, the same depth formula), on many overlapping
+// triangles of every size with vertices often on the subpixel grid and on pixel centres (ties),
+// some flat at equal depths, drawn in bands at open pixels only: the row spans and the early
+// depth reject change nothing.
+TEST(PvlRaster, RowSpansAndEarlyRejectMatchAPerPixelReference) {
+  const int w = 97, h = 61;
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> pos(-20.0, 110.0), size(0.0, 1.0), depth(1.0, 50.0);
+  std::uniform_int_distribution<int> kind(0, 3);
+  std::vector<uint8_t> open(size_t(w) * size_t(h));
+  for (auto& o : open) o = rng() % 5 != 0;
+  Framebuffer fb(w, h), ref(w, h);
+  for (int n = 0; n < 3000; ++n) {
+    ScreenVertex v[3];
+    const double cx = pos(rng), cy = pos(rng), r = std::pow(size(rng), 3.0) * 80.0;
+    // A third are flat at one of two depths: equal depths, decided by the IDs.
+    const double flat = rng() % 3 == 0 ? 4.0 * double(1 + rng() % 2) : 0.0;
+    for (auto& p : v) {
+      p = {cx + r * (size(rng) - 0.5), cy + r * (size(rng) - 0.5), flat > 0 ? flat : depth(rng)};
+      const int k = kind(rng);
+      if (k == 0) {  // on a pixel centre
+        p.x = std::floor(p.x) + 0.5;
+        p.y = std::floor(p.y) + 0.5;
+      } else if (k == 1) {  // on the subpixel grid
+        p.x = std::round(p.x * 256.0) / 256.0;
+        p.y = std::round(p.y * 256.0) / 256.0;
+      }
+    }
+    RasterTriangle t;
+    if (!setupTriangle(v, uint64_t(rng() % 50), w, h, t)) continue;
+    const double far = n % 7 == 0 ? 20.0 : 1e30;
+    for (int b = 0; b < h; b += 16) rasterizeTriangle(t, b, b + 16, open.data(), far, fb);
+    for (int y = t.y0; y < t.y1; ++y)
+      for (int x = t.x0; x < t.x1; ++x) {
+        bool inside = true;
+        for (int k = 0; k < 3; ++k) {
+          const int a = (k + 1) % 3, c = (k + 2) % 3;
+          const int64_t dx = int64_t(t.x[c]) - t.x[a], dy = int64_t(t.y[c]) - t.y[a];
+          const int64_t e =
+              dx * (int64_t(y) * 256 + 128 - t.y[a]) - dy * (int64_t(x) * 256 + 128 - t.x[a]);
+          inside = inside && (e > 0 || (e == 0 && (dy < 0 || (dy == 0 && dx < 0))));
+        }
+        const size_t i = ref.index(x, y);
+        if (!inside || !open[i]) continue;
+        const double d = 1.0 / std::clamp(t.a * (x + 0.5) + (t.b * (y + 0.5) + t.c), t.invDepthMin,
+                                          t.invDepthMax);
+        if (d <= far) ref.keepNearer(i, float(d), Rgba8{}, t.id);
+      }
+  }
+  EXPECT_EQ(fb.id, ref.id);
+  EXPECT_EQ(fb.depth, ref.depth);
 }
 
 }  // namespace
