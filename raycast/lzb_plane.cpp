@@ -8,7 +8,8 @@
 namespace lzb {
 
 PlaneDecision PartitionPlane::coarseRayCast(const EmbreeScene& embree, const Camera& camera,
-                                            int grid, std::vector<double>* hitDepths) {
+                                            int grid, std::vector<double>* hitDepths,
+                                            int threads) {
   const int gx = std::clamp(grid, 1, camera.width()), gy = std::clamp(grid, 1, camera.height());
   std::vector<Ray> rays;
   rays.reserve(size_t(gx) * size_t(gy));
@@ -19,7 +20,15 @@ PlaneDecision PartitionPlane::coarseRayCast(const EmbreeScene& embree, const Cam
                       camera.farPlane()});
     }
   std::vector<RayHit> hits(rays.size());
-  embree.intersect(rays, hits);
+  // Blocks of rays on the threads (each ray on its own: the same hits for any thread count).
+  constexpr size_t kBlock = 128;
+  const long blocks = long((rays.size() + kBlock - 1) / kBlock);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(threads, 1)) if (blocks > 1)
+  for (long b = 0; b < blocks; ++b) {
+    const size_t first = size_t(b) * kBlock, count = std::min(kBlock, rays.size() - first);
+    embree.intersect(std::span<const Ray>(rays).subspan(first, count),
+                     std::span<RayHit>(hits).subspan(first, count));
+  }
   PlaneDecision d;
   d.coarseRays = rays.size();
   double sum = 0.0;
@@ -82,7 +91,7 @@ bool PartitionPlane::stillValid(const Camera& c) const {
 }
 
 PlaneDecision PartitionPlane::place(const EmbreeScene& embree, const Camera& camera,
-                                    std::span<const LeafLoad> loads) {
+                                    std::span<const LeafLoad> loads, int threads) {
   if (!options_.dynamicPlane()) {
     PlaneDecision d;
     d.depth =
@@ -97,7 +106,7 @@ PlaneDecision PartitionPlane::place(const EmbreeScene& embree, const Camera& cam
     return d;
   }
   std::vector<double> hits;
-  PlaneDecision d = coarseRayCast(embree, camera, options_.planeGrid, &hits);
+  PlaneDecision d = coarseRayCast(embree, camera, options_.planeGrid, &hits, threads);
   if (options_.costPlane)
     d.depth = costPlane(std::move(hits), d.coarseRays, camera, loads,
                         options_.usesPvl() ? kRayCost : kNaiveRayCost);

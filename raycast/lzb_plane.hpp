@@ -59,16 +59,16 @@ class PartitionPlane {
   explicit PartitionPlane(const LzbOptions& options) : options_(options) {}
 
   // This frame's plane. embree: the whole scene (coarse rays), unused for a static plane;
-  // loads: the culled leaves (used by the cost plane only).
+  // loads: the culled leaves (used by the cost plane only); the coarse rays go on `threads`.
   PlaneDecision place(const EmbreeScene& embree, const Camera& camera,
-                      std::span<const LeafLoad> loads = {});
+                      std::span<const LeafLoad> loads = {}, int threads = 1);
   // After the near pass: how many pixels it left unfinished (feeds reuse rule 5).
   void observe(uint64_t unfinished);
 
   // Mean nearest-hit depth over the coarse grid (0 hits: camera far); exposed for tests. The
   // hit depths go to *hits when given.
   static PlaneDecision coarseRayCast(const EmbreeScene& embree, const Camera& camera, int grid,
-                                     std::vector<double>* hits = nullptr);
+                                     std::vector<double>* hits = nullptr, int threads = 1);
   // The cost plane from the coarse hit depths of `rays` rays and the culled leaves' loads, one
   // ray-cast pixel costing rayCost near triangles.
   static double costPlane(std::vector<double> hits, uint64_t rays, const Camera& camera,

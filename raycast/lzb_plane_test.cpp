@@ -33,6 +33,20 @@ TEST(PartitionPlane, DynamicIsTheMeanDepthOfTheCoarseHits) {
   EXPECT_EQ(none.depth, 100.0);
 }
 
+TEST(PartitionPlane, CoarseRaysGiveTheSameHitsOnAnyThreadCount) {
+  const Scene scene = testing::quadScene();
+  const EmbreeScene embree(scene, {});
+  // 40 x 40 rays: several blocks of the parallel loop, the last one partial.
+  std::vector<double> one, two;
+  const PlaneDecision a = PartitionPlane::coarseRayCast(embree, headOn(3.0, 0.3), 40, &one, 1);
+  const PlaneDecision b = PartitionPlane::coarseRayCast(embree, headOn(3.0, 0.3), 40, &two, 2);
+  EXPECT_EQ(a.coarseRays, 1600u);
+  EXPECT_GT(a.coarseHits, 100u);
+  EXPECT_EQ(a.coarseHits, b.coarseHits);
+  EXPECT_EQ(a.depth, b.depth);
+  EXPECT_EQ(one, two);
+}
+
 TEST(PartitionPlane, StaticIsAFractionOfTheFrustumDepth) {
   const Scene scene = testing::quadScene();
   const EmbreeScene embree(scene, {});

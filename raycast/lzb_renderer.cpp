@@ -116,7 +116,7 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
           {l.depthMin,
            uint32_t(accel_->node(culled.paths[l.path].node).leafTriangles(l.leaf).size())});
   }
-  last_.plane = plane_.place(*embree_, camera, loads);
+  last_.plane = plane_.place(*embree_, camera, loads, threads);
   const double zClip = last_.plane.depth;
   stats.addStage("plane", clock.lap());
 
