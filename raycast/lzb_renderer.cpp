@@ -123,35 +123,43 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
   // 3. Near scene by z-buffer, clipped at the plane (the far scene's size counted alongside).
   uint64_t farTriangles = 0;
   const DrawLists nearLists = nearScene(*accel_, culled, zClip, threads, &farTriangles);
-  Framebuffer& nearFb = last_.nearPass;
-  nearFb.resize(fb.width, fb.height);
+  // The near pass goes straight into fb; later passes add to it (a copy stays only on request).
+  fb.resize(fb.width, fb.height);  // and clears
   // With a GL PVL to come after a GL near pass, the pass set stays open: the PVL is drawn into
   // the same z-buffer.
   bool passOpen = false;
   const bool glPvl = lzb_.usesPvl() && lzb_.pvlRender == ZBufferKind::kGl;
   if (nearLists.triangles > 0 && zClip > camera.nearPlane()) {
     if (lzb_.nearRender == ZBufferKind::kNative) {
-      native_.draw(scene_, camera, nearLists, {}, threads, nearFb, zClip);
+      native_.draw(scene_, camera, nearLists, {}, threads, fb, zClip);
     } else {
       raster_->begin(camera, zClip);
       drawLists(*raster_, scene_, nearLists);
       if (glPvl) {
-        raster_->read(nearFb);
+        raster_->read(fb);
         passOpen = true;
       } else {
-        raster_->end(nearFb);
+        raster_->end(fb);
       }
     }
+  }
+  if (keepNearPass_) {
+    last_.nearPass.resize(fb.width, fb.height);
+    last_.nearPass.depth = fb.depth;
+    last_.nearPass.id = fb.id;
   }
   stats.addStage("near", clock.lap());
 
   // 4. Unfinished pixels.
   uint64_t unfinished = 0;
   const bool nativePvl = lzb_.usesPvl() && !glPvl;
-  open_.resize(nearFb.size());
-  for (size_t i = 0; i < nearFb.size(); ++i) {
-    open_[i] = nearFb.id[i] == kNoId;
-    unfinished += open_[i];
+  open_.resize(fb.size());
+  const long pixels = long(fb.size());
+#pragma omp parallel for schedule(static) num_threads(threads) reduction(+ : unfinished)
+  for (long i = 0; i < pixels; ++i) {
+    const bool empty = fb.id[size_t(i)] == kNoId;
+    open_[size_t(i)] = empty;
+    unfinished += empty;
   }
   plane_.observe(unfinished);
   stats.addStage("unfinished", clock.lap());
@@ -170,7 +178,7 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
   }
   const TileCastInput input{&camera, open_.data(), tMin, camera.farPlane(), oor};
   Framebuffer& farFb = farPass_;
-  bool combined = false;     // fb already holds the near pass and the far scene
+  bool nativeDrawn = false;  // the native z-buffer drew the PVL
   bool farApart = false;     // farFb holds the far scene, to be composited with the near pass
   TileCastCounts tileCounts;
   const long count = unfinished > 0 ? long(mine.size()) : 0;
@@ -227,15 +235,12 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
       // and a PVL triangle covers an unfinished pixel only where a ray was cast (OOR polygons
       // hold the projections of the far content boxes). Every rank draws its PVL part at every
       // unfinished pixel, so the ranks' composite is the 1-rank image.
-      fb.depth = nearFb.depth;
-      fb.id = nearFb.id;
       native_.draw(scene_, camera, last_.pvl, open_, threads, fb);
-      combined = true;
+      nativeDrawn = true;
     } else if (last_.pvl.triangles > 0 && passOpen) {
       raster_->setFarClip(0.0);
       drawLists(*raster_, scene_, last_.pvl);
       raster_->end(fb);
-      combined = true;
     } else if (last_.pvl.triangles > 0) {  // a pass of its own, composited below
       raster_->begin(camera, 0.0);
       drawLists(*raster_, scene_, last_.pvl);
@@ -248,11 +253,7 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
   for (auto& p : tilePixels) last_.castPixels.insert(last_.castPixels.end(), p.begin(), p.end());
 
   // Combine the passes (naive: min over (depth, id)) and shade from the IDs.
-  if (!combined) {
-    fb.depth = nearFb.depth;
-    fb.id = nearFb.id;
-    if (farApart) compositeNearer(fb, farFb);
-  }
+  if (farApart) compositeNearer(fb, farFb);
   shadeFromIds(scene_, camera, fb);
   stats.addStage("shade", clock.lap());
 
@@ -301,7 +302,7 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
     stats.addCount("pvl_size", double(last_.pvl.triangles));
     stats.addCount("pvl_leaves", double(last_.pvl.leaves));
     // Triangles (pieces, after clipping) that may cover a pixel centre of the image.
-    if (nativePvl && combined)
+    if (nativeDrawn)
       stats.addCount("pvl_raster_triangles", double(native_.counts().setUp));
   }
   (void)frame;

@@ -47,12 +47,15 @@ class LzbRenderer : public Renderer {
   // What the last frame did, for tests and studies.
   struct FrameDetail {
     PlaneDecision plane;
-    Framebuffer nearPass;              // ids/depths of the near pass alone
+    Framebuffer nearPass;              // ids/depths of the near pass alone (keepNearPass)
     std::vector<uint32_t> castPixels;  // framebuffer indices of the pixels rays were cast from
     DrawLists pvl;                     // this rank's PVL (empty for naive)
     RayWalkCounts walk;
   };
   const FrameDetail& lastFrame() const { return last_; }
+  // Keep a copy of each frame's near pass in lastFrame().nearPass (off: the near pass is drawn
+  // straight into the frame, nothing copied).
+  void keepNearPass(bool keep) { keepNearPass_ = keep; }
   const LzbAccel& accel() const { return *accel_; }
   const LzbOptions& options() const { return lzb_; }
 
@@ -74,6 +77,7 @@ class LzbRenderer : public Renderer {
   Framebuffer farPass_;
   FrameDetail last_;
   bool buildReported_ = false;
+  bool keepNearPass_ = false;
 };
 
 }  // namespace lzb

@@ -123,6 +123,8 @@ TEST(LzbRenderer, NativeAndGlZBuffersAgree) {
     nativeOptions.planeFraction = glOptions.planeFraction = 0.6;
     LzbRenderer native(scene, testing::lzbRenderOptions(), nativeOptions);
     LzbRenderer gl(scene, testing::lzbRenderOptions(), glOptions);
+    native.keepNearPass(true);
+    gl.keepNearPass(true);
     const Framebuffer a = renderFrame(native, cam), b = renderFrame(gl, cam);
     const Framebuffer &nearA = native.lastFrame().nearPass, &nearB = gl.lastFrame().nearPass;
     ASSERT_GT(nearB.coveredCount(), 0u) << f << ": no near scene to compare";
@@ -189,10 +191,12 @@ TEST(LzbRenderer, PlaneInFrontOfEverything) {
   LzbOptions o;
   o.planeFraction = 1e-9;  // at the near plane: no near scene, every covered pixel is ray cast
   LzbRenderer r(scene, testing::lzbRenderOptions(), o);
+  r.keepNearPass(true);
   ZBufferRenderer zbuffer(scene, testing::lzbRenderOptions());
   const Camera cam = pathFrame(scene, 0, 4, 128, 96);
   FrameStats stats;
   const Framebuffer img = renderFrame(r, cam, {}, &stats);
+  EXPECT_EQ(r.lastFrame().nearPass.size(), img.size());
   EXPECT_EQ(r.lastFrame().nearPass.coveredCount(), 0u);
   EXPECT_EQ(stats.counts.value("unfinished_pixels", 0.0), 128.0 * 96.0);
   EXPECT_GE(compare(img, renderFrame(zbuffer, cam)).exactIdRate, 0.999);
