@@ -24,13 +24,17 @@ TileRays tileRaysToCast(const TileRect& r, int tileIndex, const TileCastInput& i
   for (int y = r.y0; y < r.y1; ++y) {
     const uint8_t* row = in.unfinished + size_t(y) * size_t(width) + size_t(r.x0);
     std::copy(row, row + w, mask.data() + size_t((y - r.y0) * w));
-    for (int x = 0; x < w; ++x) open += row[x];
+    uint32_t rowOpen = 0;  // 32-bit lanes: the loop vectorizes
+    for (int x = 0; x < w; ++x) rowOpen += row[x];
+    open += rowOpen;
   }
   counts.unfinished += open;
   TileRays rays;
   if (open == 0) return rays;
   std::vector<double>& reach = scratch.reach;
+  std::vector<uint32_t>& marked = scratch.marked;
   if (in.oor) {
+    marked.clear();
     reach.assign(size_t(r.pixels()), 0.0);
     // Object by object: unfinished pixels inside the polygon's bounding box, then inside the
     // polygon, are marked once (the boolean matrix of the paper). Every bounding box holding a
@@ -49,18 +53,27 @@ TileRays tileRaysToCast(const TileRect& r, int tileIndex, const TileCastInput& i
           reach[i] = std::max(reach[i], p.depthMax);
           if (m != 1) continue;
           ++counts.polygonTests;
-          if (p.contains(x + 0.5, y + 0.5)) m = 2;
+          if (p.contains(x + 0.5, y + 0.5)) {
+            m = 2;
+            marked.push_back(uint32_t(i));
+          }
         }
     }
-  }
-  const uint8_t want = in.oor ? 2 : 1;
-  for (int y = r.y0; y < r.y1; ++y)
-    for (int x = r.x0; x < r.x1; ++x) {
-      const size_t i = size_t((y - r.y0) * w + (x - r.x0));
-      if (mask[i] != want) continue;
+    // Row order (tile-local index order), as without OOR: coherent neighbours for the walk.
+    std::sort(marked.begin(), marked.end());
+    for (uint32_t i : marked) {
+      const int x = r.x0 + int(i % uint32_t(w)), y = r.y0 + int(i / uint32_t(w));
       rays.pixels.push_back(uint32_t(size_t(y) * size_t(width) + size_t(x)));
-      rays.reach.push_back(in.oor ? std::min(in.tMax, reach[i] * (1.0 + kReachSlack)) : in.tMax);
+      rays.reach.push_back(std::min(in.tMax, reach[i] * (1.0 + kReachSlack)));
     }
+  } else {
+    for (int y = r.y0; y < r.y1; ++y)
+      for (int x = r.x0; x < r.x1; ++x)
+        if (mask[size_t((y - r.y0) * w + (x - r.x0))] == 1) {
+          rays.pixels.push_back(uint32_t(size_t(y) * size_t(width) + size_t(x)));
+          rays.reach.push_back(in.tMax);
+        }
+  }
   counts.cast += rays.pixels.size();
   return rays;
 }

@@ -46,6 +46,7 @@ struct TileRays {
 struct TileScratch {
   std::vector<uint8_t> mask;
   std::vector<double> reach;
+  std::vector<uint32_t> marked;  // OOR: tile-local indices of the pixels to cast
 };
 TileRays tileRaysToCast(const TileRect& r, int tileIndex, const TileCastInput& in,
                         TileScratch& scratch, TileCastCounts& counts);
