@@ -8,7 +8,7 @@ namespace lzb {
 namespace {
 
 constexpr double kEdgeTolerance = 1e-3;  // pixels, outwards
-constexpr float kObjectPixels = 16.0f;   // OOR objects are refined until they fit this size
+constexpr float kObjectPixels = 32.0f;   // OOR objects are refined until they fit this size
 
 // Node frame -> homogeneous pixel coordinates (X, Y, W): pixel = (X / W, Y / W), W = view depth.
 struct Projector {

@@ -5,7 +5,7 @@
 // The objects are octree nodes, not the scene's nodes, each with its content box (the box of its
 // triangles, cut to the node: NodeAccel::contentBox), chosen coarsest first: for every culled
 // placement, its octree is descended from the root, skipping nodes whose content lies in front of
-// the plane or outside the frustum; a node whose content projects within 16 x 16 pixels (or a
+// the plane or outside the frustum; a node whose content projects within 32 x 32 pixels (or a
 // leaf) is one object. Why: it is conservative - a pixel whose centre ray hits a far triangle at
 // point p lies inside the projection of the content box of every node holding p - and tight
 // where it matters (objects large on screen are refined down to leaves), while distant
