@@ -39,9 +39,10 @@ struct ClipPlanes {
   }
 };
 
-ScreenVertex project(const glm::dvec3& v, double s, int width, int height) {
+// halfWidth, halfHeight: half the image size in pixels (converted once per pass, not per vertex).
+ScreenVertex project(const glm::dvec3& v, double s, double halfWidth, double halfHeight) {
   const double f = s / v.z;
-  return {0.5 * width + f * v.x, 0.5 * height - f * v.y, v.z};
+  return {halfWidth + f * v.x, halfHeight - f * v.y, v.z};
 }
 
 // Round to nearest (ties to even) for |x| < 2^51, without a libm call (rounding mode: nearest).
@@ -59,7 +60,7 @@ int64_t ceilFast(double x) {
 
 // Whether [lo, hi] may hold a pixel centre i + 0.5 with 0 <= i < n once snapped: snapping moves
 // a coordinate by at most half a subpixel, so a subpixel of slack keeps this conservative.
-bool mayCoverCentre(double lo, double hi, int n) {
+[[gnu::always_inline]] inline bool mayCoverCentre(double lo, double hi, int n) {
   constexpr double kSlack = 1.0 / double(kOne);
   const int64_t first = std::max<int64_t>(0, ceilFast(lo - 0.5 - kSlack));
   const int64_t last = std::min<int64_t>(n - 1, floorFast(hi - 0.5 + kSlack));
@@ -233,7 +234,7 @@ void clipAndProject(const glm::dvec3 (&view)[3], double nearDepth, double scale,
   }
   if (n < 3) return;
   ScreenVertex s[kMaxClipVertices];
-  for (int k = 0; k < n; ++k) s[k] = project(poly[k], scale, width, height);
+  for (int k = 0; k < n; ++k) s[k] = project(poly[k], scale, 0.5 * width, 0.5 * height);
   // A convex polygon: a fan from its first vertex (the fan's inner edges are shared exactly).
   for (int k = 1; k + 1 < n; ++k) out.push_back({s[0], s[k], s[k + 1]});
 }
@@ -272,6 +273,7 @@ void NativeRasterizer::draw(const Scene& scene, const Camera& camera, const Draw
   const double nearDepth = camera.nearPlane();
   const double farDepth = farClip > 0.0 ? std::min(farClip, camera.farPlane()) : camera.farPlane();
   const double s = camera.pixelsPerUnitAt(1.0);
+  const double halfWidth = 0.5 * width, halfHeight = 0.5 * height;
   const double loX = -kGuard, hiX = width + kGuard, loY = -kGuard, hiY = height + kGuard;
   // At least ~8 chunks per thread, so that a short list (the near pass) is shared evenly.
   const uint64_t chunk = std::clamp<uint64_t>(total / (8 * uint64_t(threads)), 256, 2048);
@@ -329,7 +331,7 @@ void NativeRasterizer::draw(const Scene& scene, const Camera& camera, const Draw
             ScreenVertex sv[3];
             bool inside = true;
             for (int k = 0; k < 3; ++k) {
-              sv[k] = project(view[k], s, width, height);
+              sv[k] = project(view[k], s, halfWidth, halfHeight);
               inside &= sv[k].x >= loX && sv[k].x <= hiX && sv[k].y >= loY && sv[k].y <= hiY;
             }
             if (inside) {
