@@ -46,13 +46,16 @@ WANT = [a for a in sys.argv[1:] if not a.startswith("--")] or ["paper", "occlude
 COMMAND = "python3 runs/lzb/run.py " + " ".join(sys.argv[1:])
 
 STAGES = ["naive", "lazy", "selective", "oor", "final"]
-# The paper's experiment: every stage with the defaults (our cost plane, native PVL z-buffer),
-# then the final and naive stages with the paper's mean-depth plane (--plane auto), and the final
-# stage with the PVL drawn by OSMesa (--pvl-render gl).
+# The paper's experiment: every stage with the defaults (our cost plane, native z-buffer for the
+# near pass and the PVL), then the final and naive stages with the paper's mean-depth plane
+# (--plane auto), and the final stage with OSMesa drawing the PVL (final-gl), the near pass
+# (final-glnear) or both (final-allgl).
 VARIANTS = [(st, ["--lzb-stage", st]) for st in STAGES] + [
     ("final-auto", ["--lzb-stage", "final", "--plane", "auto"]),
     ("naive-auto", ["--lzb-stage", "naive", "--plane", "auto"]),
-    ("final-gl", ["--lzb-stage", "final", "--pvl-render", "gl"])]
+    ("final-gl", ["--lzb-stage", "final", "--pvl-render", "gl"]),
+    ("final-glnear", ["--lzb-stage", "final", "--near-render", "gl"]),
+    ("final-allgl", ["--lzb-stage", "final", "--near-render", "gl", "--pvl-render", "gl"])]
 # Idle OpenMP workers sleep instead of spinning: on 2 cores a spinning worker takes a core from
 # llvmpipe's rasterizer threads (measured: lzb 44 -> 29 ms per frame, z-buffer 138 -> 133 ms).
 # Both methods run in the same process, so both get it.
