@@ -26,7 +26,7 @@ std::vector<uint8_t> coverage(const ScreenVertex (&v)[3], int w, int h) {
 // A jittered grid of vertices, some exactly on pixel centres and on pixel-centre rows and
 // columns, split into triangles with random diagonals and random windings: every pixel centre
 // strictly inside the grid's outline is covered by exactly one triangle, none outside by any.
-TEST(PvlRaster, SharedEdgesCoverEveryPixelCentreExactlyOnce) {
+TEST(NativeRaster, SharedEdgesCoverEveryPixelCentreExactlyOnce) {
   const int w = 64, h = 48, n = 9;
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> jitter(-1.5, 1.5);
@@ -69,7 +69,7 @@ TEST(PvlRaster, SharedEdgesCoverEveryPixelCentreExactlyOnce) {
     }
 }
 
-TEST(PvlRaster, TieRuleAtPixelCentres) {
+TEST(NativeRaster, TieRuleAtPixelCentres) {
   // A 4 x 2 rectangle whose edges lie exactly on pixel centres: left and bottom edges are in,
   // right and top out (OSMesa's rule, below), whichever diagonal and winding.
   const ScreenVertex a{2.5, 1.5, 1.0}, b{6.5, 1.5, 1.0}, c{6.5, 3.5, 1.0}, d{2.5, 3.5, 1.0};
@@ -84,7 +84,7 @@ TEST(PvlRaster, TieRuleAtPixelCentres) {
   }
 }
 
-TEST(PvlRaster, InterpolatesViewDepthPerspectiveCorrectly) {
+TEST(NativeRaster, InterpolatesViewDepthPerspectiveCorrectly) {
   // A plane tilted in depth: 1/depth is affine on screen, depth is not.
   const ScreenVertex v[3] = {{0.0, 0.0, 1.0}, {40.0, 0.0, 4.0}, {0.0, 40.0, 1.0}};
   RasterTriangle t;
@@ -190,7 +190,7 @@ void expectSameAsGl(const OneMesh& m, const Camera& cam, const glm::dmat4& world
   if (covered) *covered = n;
 }
 
-TEST(PvlRaster, ClipsATriangleCrossingTheNearPlaneLikeOsMesa) {
+TEST(NativeRaster, ClipsATriangleCrossingTheNearPlaneLikeOsMesa) {
   // One vertex behind the camera, one between the eye and the near plane, one in front; and a
   // triangle wholly behind the camera (drawn nowhere).
   const OneMesh m(
@@ -210,7 +210,7 @@ TEST(PvlRaster, ClipsATriangleCrossingTheNearPlaneLikeOsMesa) {
   for (float d : img.depth) EXPECT_GE(d, 1.0f);
 }
 
-TEST(PvlRaster, ClipsHugeTrianglesAtTheGuardBandLikeOsMesa) {
+TEST(NativeRaster, ClipsHugeTrianglesAtTheGuardBandLikeOsMesa) {
   // Vertices ~13 K pixels off screen (beyond the guard band), through a translated instance
   // transform far from the origin (camera-relative arithmetic keeps the precision).
   const OneMesh m({{glm::vec3(-5000.0f, -3000.0f, -20.0f), glm::vec3(4000.0f, -10.0f, -5.0f),
@@ -222,7 +222,7 @@ TEST(PvlRaster, ClipsHugeTrianglesAtTheGuardBandLikeOsMesa) {
   EXPECT_EQ(covered, 80 * 60);
 }
 
-TEST(PvlRaster, OwnsEdgesThroughPixelCentresLikeOsMesa) {
+TEST(NativeRaster, OwnsEdgesThroughPixelCentresLikeOsMesa) {
   // Seen from the origin along -z with a 90 degree field on 64 x 64 pixels, z = -32 maps x, y
   // to pixel (32 + x, 32 - y) exactly: rectangles and diagonals through pixel centres, every
   // pixel's owner the same as OSMesa's.
@@ -254,7 +254,7 @@ TEST(PvlRaster, OwnsEdgesThroughPixelCentresLikeOsMesa) {
   EXPECT_GT(covered, 300);
 }
 
-TEST(PvlRaster, SameImageForAnyThreadCountAndOrder) {
+TEST(NativeRaster, SameImageForAnyThreadCountAndOrder) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<float> u(-4.0f, 4.0f), z(-30.0f, -2.0f);
   std::vector<std::array<glm::vec3, 3>> tris;
@@ -290,7 +290,7 @@ TEST(PvlRaster, SameImageForAnyThreadCountAndOrder) {
 // triangles of every size with vertices often on the subpixel grid and on pixel centres (ties),
 // some flat at equal depths, drawn in bands at open pixels only: the row spans and the early
 // depth reject change nothing.
-TEST(PvlRaster, RowSpansAndEarlyRejectMatchAPerPixelReference) {
+TEST(NativeRaster, RowSpansAndEarlyRejectMatchAPerPixelReference) {
   const int w = 97, h = 61;
   std::mt19937 rng(23);
   std::uniform_real_distribution<double> pos(-20.0, 110.0), size(0.0, 1.0), depth(1.0, 50.0);

@@ -227,9 +227,10 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
     last_.pvl = mergePvl(*accel_, std::span<const PvlPart>(parts_.data(), size_t(count)), threads);
     stats.addStage("pvl_find", clock.lap());
 
-    // The PVL by z-buffer, unclipped, on top of the near pass: one z-buffer holds both, so
-    // there is one target to clear, finish and read instead of two plus a composite. (A pass
-    // set left open without a PVL is dropped: the next begin() starts afresh.)
+    // The PVL by z-buffer, unclipped, on top of the near pass in fb: natively, or by OSMesa
+    // into the open GL pass of a GL near pass (one target to clear, finish and read), else by
+    // OSMesa into a pass of its own composited below. (A pass set left open without a PVL is
+    // dropped: the next begin() starts afresh.)
     if (last_.pvl.triangles > 0 && nativePvl) {
       // Native: only the unfinished pixels can change (the near pass is exact where it drew),
       // and a PVL triangle covers an unfinished pixel only where a ray was cast (OOR polygons
