@@ -124,7 +124,7 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
   uint64_t farTriangles = 0;
   const DrawLists nearLists = nearScene(*accel_, culled, zClip, threads, &farTriangles);
   // The near pass goes straight into fb; later passes add to it (a copy stays only on request).
-  fb.resize(fb.width, fb.height);  // and clears
+  fb.clear();
   // With a GL PVL to come after a GL near pass, the pass set stays open: the PVL is drawn into
   // the same z-buffer.
   bool passOpen = false;
@@ -143,11 +143,7 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
       }
     }
   }
-  if (keepNearPass_) {
-    last_.nearPass.resize(fb.width, fb.height);
-    last_.nearPass.depth = fb.depth;
-    last_.nearPass.id = fb.id;
-  }
+  if (keepNearPass_) last_.nearPass = fb;
   stats.addStage("near", clock.lap());
 
   // 4. Unfinished pixels.

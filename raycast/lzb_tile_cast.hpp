@@ -41,13 +41,15 @@ struct TileRays {
   std::vector<double> reach;
 };
 
-// The rays of tile r: its unfinished pixels and, with OOR, only those inside a polygon binned
-// to the tile. scratch: reused between calls.
+// Per-thread buffers of tileRaysToCast, reused from tile to tile.
 struct TileScratch {
   std::vector<uint8_t> mask;
   std::vector<double> reach;
   std::vector<uint32_t> marked;  // OOR: tile-local indices of the pixels to cast
 };
+
+// The rays of tile r: its unfinished pixels and, with OOR, only those inside a polygon binned
+// to the tile.
 TileRays tileRaysToCast(const TileRect& r, int tileIndex, const TileCastInput& in,
                         TileScratch& scratch, TileCastCounts& counts);
 
