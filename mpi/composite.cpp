@@ -20,7 +20,7 @@ void nearerOp(void* in, void* inout, int* len, MPI_Datatype*) {
   const Pixel* a = static_cast<const Pixel*>(in);
   Pixel* b = static_cast<Pixel*>(inout);
   for (int i = 0; i < *len; ++i)
-    if (a[i].depth < b[i].depth || (a[i].depth == b[i].depth && a[i].id < b[i].id)) b[i] = a[i];
+    if (nearer(a[i].depth, a[i].id, b[i].depth, b[i].id)) b[i] = a[i];
 }
 
 }  // namespace

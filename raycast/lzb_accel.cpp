@@ -55,7 +55,7 @@ NodeAccel::NodeAccel(const Scene& scene, uint32_t node, const LzbAccelParams& pa
     if (!finiteMatrix(m) || !std::isfinite(det) || det == 0.0) continue;  // nothing to hit
     const glm::dmat4 inv = glm::inverse(m);
     if (!finiteMatrix(inv)) continue;
-    inverse_[i] = {glm::dmat3(inv), glm::dvec3(inv[3])};
+    inverse_[i] = Affine::from(inv);
     usable_[i] = 1;
   }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "raycast/lzb_octree_ropes.hpp"
+#include "src/core/affine.hpp"
 #include "src/core/scene.hpp"
 #include "src/octree/octree.hpp"
 
@@ -20,14 +21,6 @@ struct LzbAccelParams {
   int maxDepth = 16;
   int occluders = 5;        // K: static local occluders kept per leaf
   double baseFacing = 0.5;  // the paper's preset -v.n of the base visibility
-};
-
-// An affine transform as a 3x3 linear part and a translation (double, for ray frames).
-struct Affine {
-  glm::dmat3 linear{1.0};
-  glm::dvec3 offset{0.0};
-  glm::dvec3 point(const glm::dvec3& p) const { return linear * p + offset; }
-  glm::dvec3 vector(const glm::dvec3& v) const { return linear * v; }
 };
 
 class NodeAccel {

@@ -41,15 +41,6 @@ DrawLists nonEmpty(std::vector<DrawList>& lists) {
 
 }  // namespace
 
-bool DrawLists::contains(uint64_t id) const {
-  auto it = std::upper_bound(lists.begin(), lists.end(), id,
-                             [](uint64_t v, const DrawList& l) { return v < l.idBase; });
-  if (it == lists.begin()) return false;
-  --it;
-  if (id - it->idBase > 0xffffffffull) return false;
-  return std::binary_search(it->triangles.begin(), it->triangles.end(), uint32_t(id - it->idBase));
-}
-
 DrawLists nearScene(const LzbAccel& accel, const CulledScene& culled, double zClip, int threads,
                     uint64_t* farTriangles) {
   const std::vector<size_t> range = pathLeafRanges(culled);

@@ -23,7 +23,7 @@ enum class OccluderMode { kStatic, kDynamic, kHybrid };
 enum class OctreeWalk { kTopDown, kCoherent };
 
 // Which z-buffer draws a pass (near scene, PVL): the project's native multithreaded z-buffer
-// (lzb_native_raster.hpp; the PVL only at the unfinished pixels), or OSMesa.
+// (src/zbuffer/native_raster.hpp; the PVL only at the unfinished pixels), or OSMesa.
 enum class ZBufferKind { kNative, kGl };
 
 struct LzbOptions {

@@ -25,7 +25,7 @@
 #include "raycast/lzb_oor.hpp"
 #include "raycast/lzb_options.hpp"
 #include "raycast/lzb_plane.hpp"
-#include "raycast/lzb_native_raster.hpp"
+#include "src/zbuffer/native_raster.hpp"
 #include "raycast/lzb_ray_walk.hpp"
 #include "src/core/renderer.hpp"
 #include "src/zbuffer/triangle_rasterizer.hpp"

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "src/core/color.hpp"
+#include "src/core/depth_key.hpp"
 #include "src/core/scene.hpp"
 
 namespace lzb {
@@ -27,9 +28,9 @@ struct Framebuffer {
   size_t index(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }
   bool covered(size_t i) const { return id[i] != kNoId; }
   size_t coveredCount() const;
-  // Keeps the nearer sample; equal depths break on the smaller ID, so any order gives one result.
+  // Keeps the nearer sample by the compositing key's rule (depth_key.hpp).
   void keepNearer(size_t i, float d, Rgba8 c, uint64_t triangle) {
-    if (d < depth[i] || (d == depth[i] && triangle < id[i])) {
+    if (nearer(d, triangle, depth[i], id[i])) {
       depth[i] = d;
       color[i] = c;
       id[i] = triangle;

@@ -22,7 +22,7 @@
 #include <glm/glm.hpp>
 
 #include "src/rzb/box_selection.hpp"
-#include "src/rzb/philox_stream.hpp"
+#include "src/core/philox_stream.hpp"
 #include "src/rzb/sample_tree.hpp"
 
 namespace lzb::rzb {

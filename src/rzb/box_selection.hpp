@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "src/core/camera.hpp"
-#include "src/rzb/affine.hpp"
-#include "src/rzb/philox_stream.hpp"
+#include "src/core/affine.hpp"
+#include "src/core/philox_stream.hpp"
 #include "src/rzb/sample_scene.hpp"
 
 namespace lzb::rzb {

@@ -126,11 +126,11 @@ TEST(RzbBench, PointPassParts) {
     sink ^= acc;
   });
   KeyBuffer keys;
-  const SplatSetup setup = SplatSetup::from(camera, 1, true);
+  const SplatSetup setup = SplatSetup::from(camera, 1);
   PassCounts pc;
   const double splatS = timed("splat", [&] {
     keys.reset(640, 480, scene.expandedTriangles() > 0xffffffffull, threads);
-    pc = splatJobs(jobs, sel.boxes, stream, setup, keys, threads);
+    pc = splatJobs(jobs, sel.boxes, stream, setup, true, keys, threads);
   });
   const double limit = measureScatterLimit(640, 480, threads, 1.0);
   nlohmann::json j = {{"scene", scene.source},

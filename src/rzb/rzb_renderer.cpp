@@ -152,9 +152,9 @@ void RzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
   }
 
   // 5. Splat, resolve, composite with the fallback.
-  const SplatSetup setup = SplatSetup::from(camera, params_.splat, params_.dropBackfaces);
+  const SplatSetup setup = SplatSetup::from(camera, params_.splat);
   keys_.reset(camera.width(), camera.height(), scene_.expandedTriangles() > 0xffffffffull, threads);
-  const PassCounts pc = splatJobs(jobs, sel.boxes, *splatStream, setup, keys_, threads);
+  const PassCounts pc = splatJobs(jobs, sel.boxes, *splatStream, setup, params_.dropBackfaces, keys_, threads);
   stats.addStage("splat", clock.lap());
   keys_.resolve(fb, threads);
   if (rastered) compositeNearer(fb, raster);
@@ -165,7 +165,7 @@ void RzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
   if (params_.reconstruct == Reconstruct::kGauss && !mine.empty()) {
     std::vector<uint64_t> accum;
     const PassCounts gc =
-        gaussAccumulate(jobs, sel.boxes, *splatStream, setup, fb.depth, scene_, accum, threads);
+        gaussAccumulate(jobs, sel.boxes, *splatStream, setup, params_.dropBackfaces, fb.depth, scene_, accum, threads);
     const long n = long(fb.size());
 #pragma omp parallel for schedule(static) num_threads(threads)
     for (long i = 0; i < n; ++i) {

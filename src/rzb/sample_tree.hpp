@@ -30,7 +30,7 @@
 
 #include "src/core/bounds.hpp"
 #include "src/core/scene.hpp"
-#include "src/rzb/affine.hpp"
+#include "src/core/affine.hpp"
 
 namespace lzb::rzb {
 

@@ -1,4 +1,4 @@
-#include "raycast/lzb_native_raster.hpp"
+#include "src/zbuffer/native_raster.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,9 +1,9 @@
-#include "src/rzb/affine.hpp"
+#include "src/core/affine.hpp"
 
 #include <algorithm>
 #include <numbers>
 
-namespace lzb::rzb {
+namespace lzb {
 
 namespace {
 
@@ -35,4 +35,4 @@ double maxStretch(const glm::dmat3& a) {
 
 double maxAreaScale(const glm::dmat3& a) { return maxStretch(cofactor(a)); }
 
-}  // namespace lzb::rzb
+}  // namespace lzb

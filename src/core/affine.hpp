@@ -4,7 +4,7 @@
 #include <cmath>
 #include <glm/glm.hpp>
 
-namespace lzb::rzb {
+namespace lzb {
 
 struct Affine {
   glm::dmat3 a{1.0};  // linear part (column-major, as glm)
@@ -40,4 +40,4 @@ double maxStretch(const glm::dmat3& a);
 // of its cofactor matrix), so sampling by local area times this never undersamples.
 double maxAreaScale(const glm::dmat3& a);
 
-}  // namespace lzb::rzb
+}  // namespace lzb

@@ -1,15 +1,14 @@
 #pragma once
-// The native z-buffer (`--near-render native`, `--pvl-render native`): a multithreaded software
-// z-buffer. The near pass draws the near scene at every pixel, clipped per fragment at the
-// partition plane; the PVL pass draws the potentially visible list only at the "open" pixels (the
-// near pass's unfinished pixels; every ray-cast pixel is one, and a PVL triangle can cover no
-// other unfinished pixel than a ray-cast one except by rounding at the edge of a projected
-// object). Finished pixels keep their near pass: the near pass shows the exact nearest surface
-// there.
+// The native z-buffer: a multithreaded software z-buffer that any pass can use (lzb's near pass
+// and PVL, `--near-render native`, `--pvl-render native`). A pass draws draw lists either at
+// every pixel (optionally clipped per fragment at a far depth: lzb's near pass stops at the
+// partition plane) or only at the "open" pixels of a mask (lzb's PVL pass draws only the near
+// pass's unfinished pixels; every ray-cast pixel is one, and a PVL triangle can cover no other
+// unfinished pixel than a ray-cast one except by rounding at the edge of a projected object).
 //
-// Per pixel it keeps the minimum of (depth, ID), as Framebuffer::keepNearer, so the result does
-// not depend on the order of triangles, the thread count or the split of the PVL over ranks
-// (compositing the ranks' images by (depth, ID) gives the 1-rank image bit for bit).
+// Per pixel it keeps the nearer (depth, ID) by the compositing key's rule (src/core/depth_key.hpp),
+// so the result does not depend on the order of triangles, the thread count or the split of the
+// lists over ranks (compositing the ranks' images gives the 1-rank image bit for bit).
 //
 // Rasterization: positions camera-relative in double, clipped in view space at the near plane
 // (and at a guard band far outside the image, which keeps fixed-point coordinates small), snapped
@@ -27,10 +26,10 @@
 #include <span>
 #include <vector>
 
-#include "raycast/lzb_draw_lists.hpp"
 #include "src/core/camera.hpp"
 #include "src/core/framebuffer.hpp"
 #include "src/core/scene.hpp"
+#include "src/zbuffer/draw_lists.hpp"
 
 namespace lzb {
 

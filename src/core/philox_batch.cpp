@@ -6,9 +6,9 @@
 
 #include <cstdint>
 
-#include "src/rzb/philox_stream.hpp"
+#include "src/core/philox_stream.hpp"
 
-namespace lzb::rzb {
+namespace lzb {
 
 namespace {
 
@@ -155,4 +155,4 @@ void philoxBatch(const SampleStream& stream, uint64_t box, uint64_t first, uint3
   batch(stream.key0(), stream.key1(), uint32_t(box), uint32_t(box >> 32), first, n, w0, w1, w2, w3);
 }
 
-}  // namespace lzb::rzb
+}  // namespace lzb

@@ -1,4 +1,4 @@
-#include "raycast/lzb_native_raster.hpp"
+#include "src/zbuffer/native_raster.hpp"
 
 #include <omp.h>
 
@@ -164,14 +164,14 @@ uint64_t rasterizeTriangle(const RasterTriangle& t, int rowBegin, int rowEnd, co
     if (open && !open[i]) return;
     // No fragment of t is nearer than nearestF: skip the division where the test must fail.
     const float old = fb.depth[i];
-    if (old < nearestF || (old == nearestF && fb.id[i] <= t.id)) return;
+    if (!nearer(nearestF, t.id, old, fb.id[i])) return;
     // Clamped to the vertices' range, which holds every point of the triangle: on a sliver a
     // pixel centre just outside the unsnapped triangle would extrapolate a steep plane.
     const double depth =
         1.0 / std::clamp(t.a * (x + 0.5) + rowInvDepth, t.invDepthMin, t.invDepthMax);
     if (!(depth <= farDepth)) return;
     const float d = float(depth);
-    if (d < old || (d == old && t.id < fb.id[i])) {
+    if (nearer(d, t.id, old, fb.id[i])) {
       fb.depth[i] = d;
       fb.id[i] = t.id;
       ++written;

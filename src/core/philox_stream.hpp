@@ -1,12 +1,12 @@
 #pragma once
-// All randomness of the randomized z-buffer: Philox-4x32-10 (Random123), a counter-based generator,
-// keyed by (seed, frame) with the counter (box key, sample index, purpose). A sample's random
+// All randomness of the sampling methods: Philox-4x32-10 (Random123), a counter-based generator,
+// keyed by (seed, frame) with the counter (node key, sample index, purpose). A sample's random
 // numbers therefore depend only on what it is, never on the thread or rank that draws it.
 #include <Random123/philox.h>
 
 #include <cstdint>
 
-namespace lzb::rzb {
+namespace lzb {
 
 // splitmix64's finalizer: a bijective 64-bit mixer.
 inline uint64_t mix64(uint64_t x) {
@@ -59,4 +59,4 @@ class SampleStream {
 void philoxBatch(const SampleStream& stream, uint64_t box, uint64_t first, uint32_t n,
                  uint32_t* w0, uint32_t* w1, uint32_t* w2, uint32_t* w3);
 
-}  // namespace lzb::rzb
+}  // namespace lzb
