@@ -10,14 +10,13 @@ namespace lzb::mpi {
 
 namespace {
 
-nlohmann::json rankEntry(int rank, const FrameStats& stats, const CompositeStats& composite) {
+nlohmann::json rankEntry(int rank, const FrameStats& stats) {
   nlohmann::json stages = nlohmann::json::object();
   for (const auto& [name, seconds] : stats.stageSeconds) stages[name] = seconds;
-  stages["composite"] = composite.seconds;
   return {{"rank", rank},
           {"stages", stages},
           {"counts", stats.counts},
-          {"bytes_sent", composite.bytesSent},
+          {"shared", stats.shared},
           {"peak_memory_bytes", peakMemoryBytes()}};
 }
 
@@ -30,7 +29,35 @@ void sumInto(nlohmann::json& a, const nlohmann::json& b) {
   }
 }
 
+// Gathers every rank's entry at the root: stages as the maximum over ranks, counts summed, the
+// root's shared figures added to the counts (every rank computed them alike), peak memory as the
+// maximum.
+nlohmann::json gather(const Group& g, const nlohmann::json& mine) {
+  const std::vector<std::string> entries = gatherStrings(g, mine.dump());
+  if (!g.root()) return nullptr;
+  nlohmann::json out = {{"stages", nlohmann::json::object()},
+                        {"counts", nlohmann::json::object()},
+                        {"ranks", nlohmann::json::array()}};
+  double peak = 0.0;
+  for (const std::string& text : entries) {
+    nlohmann::json e = nlohmann::json::parse(text);
+    for (auto it = e["stages"].begin(); it != e["stages"].end(); ++it)
+      out["stages"][it.key()] = std::max(out["stages"].value(it.key(), 0.0), it.value().get<double>());
+    sumInto(out["counts"], e["counts"]);
+    peak = std::max(peak, e["peak_memory_bytes"].get<double>());
+    out["ranks"].push_back(std::move(e));
+  }
+  out["counts"].update(out["ranks"][0]["shared"]);
+  for (nlohmann::json& e : out["ranks"]) e.erase("shared");
+  out["peak_memory_bytes"] = peak;
+  return out;
+}
+
 }  // namespace
+
+nlohmann::json gatherStats(const Group& g, const FrameStats& stats) {
+  return gather(g, rankEntry(g.rank, stats));
+}
 
 nlohmann::json renderFrame(const Group& g, Renderer& renderer, const Camera& camera, int frame,
                            Framebuffer& fb) {
@@ -42,22 +69,15 @@ nlohmann::json renderFrame(const Group& g, Renderer& renderer, const Camera& cam
   const CompositeStats composite = compositeAtRoot(g, fb);
   const double seconds = clock.seconds();
 
-  const std::vector<std::string> entries = gatherStrings(g, rankEntry(g.rank, stats, composite).dump());
+  stats.addStage("composite", composite.seconds);
+  nlohmann::json mine = rankEntry(g.rank, stats);
+  mine["bytes_sent"] = composite.bytesSent;
+  nlohmann::json out = gather(g, mine);
   if (!g.root()) return nullptr;
-  nlohmann::json out = {{"seconds", seconds}, {"stages", nlohmann::json::object()},
-                        {"counts", nlohmann::json::object()}, {"ranks", nlohmann::json::array()}};
-  double bytes = 0.0, peak = 0.0;
-  for (const std::string& text : entries) {
-    nlohmann::json e = nlohmann::json::parse(text);
-    for (auto it = e["stages"].begin(); it != e["stages"].end(); ++it)
-      out["stages"][it.key()] = std::max(out["stages"].value(it.key(), 0.0), it.value().get<double>());
-    sumInto(out["counts"], e["counts"]);
-    bytes += e["bytes_sent"].get<double>();
-    peak = std::max(peak, e["peak_memory_bytes"].get<double>());
-    out["ranks"].push_back(std::move(e));
-  }
+  double bytes = 0.0;
+  for (const nlohmann::json& e : out["ranks"]) bytes += e["bytes_sent"].get<double>();
+  out["seconds"] = seconds;
   out["bytes_sent"] = bytes;
-  out["peak_memory_bytes"] = peak;
   return out;
 }
 

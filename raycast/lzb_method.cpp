@@ -9,29 +9,37 @@ namespace lzb {
 
 namespace {
 
-// The option values as typed, and the validated settings (owned by the plugin).
-struct LzbArgs {
-  std::string stage = "final";
-  std::string plane = "cost";
-  std::string occluderMode = "dynamic";
-  std::string walk;  // empty: the stage's own
-  std::string nearRender = "native";
-  std::string pvlRender = "native";
-  LzbOptions options;
+class LzbMethod : public Method {
+ public:
+  std::string name() const override { return "lzb"; }
+  std::string summary() const override {
+    return "exact*: local z-buffering (near z-buffer, far PVL by lazy/selective/object-oriented "
+           "ray casting)";
+  }
+  void addOptions(CLI::App& c) override;
+  void validate() override;
+  nlohmann::json parameters() const override;
+  std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const override {
+    return std::make_unique<LzbRenderer>(scene, options, options_);
+  }
+
+ private:
+  // The option values as typed, and the validated settings.
+  std::string stage_ = "final";
+  std::string plane_ = "cost";
+  std::string occluderMode_ = "dynamic";
+  std::string walk_;  // empty: the stage's own
+  std::string nearRender_ = "native";
+  std::string pvlRender_ = "native";
+  LzbOptions options_;
 };
 
-LzbArgs& args() {
-  static LzbArgs a;
-  return a;
-}
-
-void addOptions(CLI::App& c) {
-  LzbArgs& a = args();
-  LzbOptions& o = a.options;
-  c.add_option("--lzb-stage", a.stage,
+void LzbMethod::addOptions(CLI::App& c) {
+  LzbOptions& o = options_;
+  c.add_option("--lzb-stage", stage_,
                "lzb: far-scene stage: naive | lazy | selective | oor | final")
       ->capture_default_str();
-  c.add_option("--plane", a.plane,
+  c.add_option("--plane", plane_,
                "lzb: partition plane: auto (coarse ray casting, mean depth), cost (coarse ray "
                "casting, cost model) or a fraction F in (0, 1) of the frustum depth")
       ->capture_default_str();
@@ -43,16 +51,16 @@ void addOptions(CLI::App& c) {
       ->capture_default_str();
   c.add_option("--occluders", o.occluders, "lzb: K static local occluders per octree leaf")
       ->capture_default_str();
-  c.add_option("--occluder-mode", a.occluderMode,
+  c.add_option("--occluder-mode", occluderMode_,
                "lzb: local occluder selection: static | dynamic | hybrid")
       ->capture_default_str();
-  c.add_option("--lzb-walk", a.walk,
+  c.add_option("--lzb-walk", walk_,
                "lzb: ray-octree walk: topdown | coherent (default: coherent for final, else "
                "topdown)");
-  c.add_option("--near-render", a.nearRender,
+  c.add_option("--near-render", nearRender_,
                "lzb: how the near scene is z-buffered: native (multithreaded) | gl (OSMesa)")
       ->capture_default_str();
-  c.add_option("--pvl-render", a.pvlRender,
+  c.add_option("--pvl-render", pvlRender_,
                "lzb: how the PVL is z-buffered: native (multithreaded, only at the unfinished "
                "pixels) | gl (OSMesa; into the near pass's z-buffer when that is gl too)")
       ->capture_default_str();
@@ -67,21 +75,20 @@ void addOptions(CLI::App& c) {
       ->capture_default_str();
 }
 
-void validateArgs() {
-  LzbArgs& a = args();
-  LzbOptions& o = a.options;
-  o.stage = parseLzbStage(a.stage, "--lzb-stage");
-  parsePlane(a.plane, "--plane", o);
-  o.occluderMode = parseOccluderMode(a.occluderMode, "--occluder-mode");
-  o.walkOverride = !a.walk.empty();
-  if (o.walkOverride) o.walk = parseOctreeWalk(a.walk, "--lzb-walk");
-  o.nearRender = parseZBufferKind(a.nearRender, "--near-render");
-  o.pvlRender = parseZBufferKind(a.pvlRender, "--pvl-render");
-  validate(o);
+void LzbMethod::validate() {
+  LzbOptions& o = options_;
+  o.stage = parseLzbStage(stage_, "--lzb-stage");
+  parsePlane(plane_, "--plane", o);
+  o.occluderMode = parseOccluderMode(occluderMode_, "--occluder-mode");
+  o.walkOverride = !walk_.empty();
+  if (o.walkOverride) o.walk = parseOctreeWalk(walk_, "--lzb-walk");
+  o.nearRender = parseZBufferKind(nearRender_, "--near-render");
+  o.pvlRender = parseZBufferKind(pvlRender_, "--pvl-render");
+  lzb::validate(o);
 }
 
-nlohmann::json parameters() {
-  const LzbOptions& o = args().options;
+nlohmann::json LzbMethod::parameters() const {
+  const LzbOptions& o = options_;
   nlohmann::json j = {{"stage", toString(o.stage)},
                       {"plane", o.dynamicPlane() ? nlohmann::json(o.costPlane ? "cost" : "auto")
                                                  : nlohmann::json(o.planeFraction)},
@@ -103,17 +110,6 @@ nlohmann::json parameters() {
 
 }  // namespace
 
-MethodPlugin lzbMethod() {
-  return MethodPlugin{
-      "lzb",
-      "exact*: local z-buffering (near z-buffer, far PVL by lazy/selective/object-oriented ray "
-      "casting)",
-      addOptions,
-      validateArgs,
-      parameters,
-      [](const Scene& scene, const RenderOptions& options) -> std::unique_ptr<Renderer> {
-        return std::make_unique<LzbRenderer>(scene, options, args().options);
-      }};
-}
+std::unique_ptr<Method> makeLzbMethod() { return std::make_unique<LzbMethod>(); }
 
 }  // namespace lzb

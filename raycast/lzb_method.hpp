@@ -1,10 +1,12 @@
 #pragma once
-// `lzb render --method lzb`: the local z-buffering method's options, validation, report
-// parameters and factory (see src/cli/method_plugin.hpp).
-#include "src/cli/method_plugin.hpp"
+// --method lzb: the local z-buffering method's options, validation, report parameters and
+// factory (the method contract of src/core/method.hpp).
+#include <memory>
+
+#include "src/core/method.hpp"
 
 namespace lzb {
 
-MethodPlugin lzbMethod();
+std::unique_ptr<Method> makeLzbMethod();
 
 }  // namespace lzb

@@ -40,7 +40,7 @@
 
 #include "raycast/lzb_accel.hpp"
 #include "raycast/lzb_cull.hpp"
-#include "raycast/screen_tiles.hpp"
+#include "mpi/decomposition.hpp"
 #include "src/core/camera.hpp"
 
 namespace lzb {

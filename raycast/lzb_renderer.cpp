@@ -7,8 +7,7 @@
 
 #include "raycast/lzb_cull.hpp"
 #include "raycast/lzb_oor.hpp"
-#include "raycast/lzb_tile_cast.hpp"
-#include "raycast/screen_tiles.hpp"
+#include "mpi/decomposition.hpp"
 #include "src/core/shading.hpp"
 #include "src/core/timer.hpp"
 
@@ -58,6 +57,11 @@ void drawLists(TriangleRasterizer& raster, const Scene& scene, const DrawLists& 
   }
 }
 
+// Rays start a hair before the plane: the near pass kept fragments up to z_clip exactly.
+double rayStart(const Camera& camera, double zClip) {
+  return std::max(camera.nearPlane(), zClip * (1.0 - 1e-7));
+}
+
 }  // namespace
 
 LzbRenderer::LzbRenderer(const Scene& scene, const RenderOptions& options, const LzbOptions& lzb)
@@ -85,118 +89,140 @@ std::string LzbRenderer::decomposition() const {
          "id)";
 }
 
-void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
-                         FrameStats& stats) {
+FrameStats LzbRenderer::setupStats() const {
+  FrameStats s;
+  s.addStage("build", accel_->stats().seconds + embree_->buildStats().seconds);
+  s.setShared("octrees", double(accel_->stats().octrees));
+  s.setShared("octree_nodes", double(accel_->stats().octreeNodes));
+  s.setShared("static_occluders", double(accel_->stats().occluders));
+  return s;
+}
+
+void LzbRenderer::render(const Camera& camera, int /*frame*/, const WorkShare& share,
+                         Framebuffer& fb, FrameStats& stats) {
   if (fb.width != camera.width() || fb.height != camera.height())
     throw std::invalid_argument("lzb: framebuffer and camera sizes differ");
-  const bool root = share.rank == 0;  // counts every rank shares are reported once
-  const int threads = options_.threads;
-  if (!buildReported_) {
-    stats.addStage("build", accel_->stats().seconds + embree_->buildStats().seconds);
-    stats.addCount("octrees", double(accel_->stats().octrees));
-    stats.addCount("octree_nodes", double(accel_->stats().octreeNodes));
-    stats.addCount("static_occluders", double(accel_->stats().occluders));
-    buildReported_ = true;
-  }
-  Stopwatch clock;
+  Frame f;
+  f.camera = &camera;
+  f.share = share;
   last_.castPixels.clear();
   last_.walk = {};
-
-  // 1. Hierarchical view-frustum culling.
-  cullScene(*accel_, camera, culled_, threads);
-  const CulledScene& culled = culled_;
+  Stopwatch clock;
+  cull(f);
   stats.addStage("cull", clock.lap());
+  placePlane(f);
+  stats.addStage("plane", clock.lap());
+  drawNearPass(f, fb);
+  stats.addStage("near", clock.lap());
+  markUnfinished(f, fb);
+  stats.addStage("unfinished", clock.lap());
+  if (lzb_.usesOor() && f.unfinished > 0) {
+    projectFarObjects(f);
+    stats.addStage("oor_project", clock.lap());
+  }
+  castFarRays(f);
+  stats.addStage(lzb_.usesPvl() ? "pvl_find" : "raycast", clock.lap());
+  if (lzb_.usesPvl()) {
+    renderPvl(f, fb);
+    stats.addStage("pvl_render", clock.lap());
+  }
+  shade(f, fb);
+  stats.addStage("shade", clock.lap());
+  if (share.rank == 0 && lzb_.depthComplexityGrid > 0) {
+    measureDepthComplexity(camera, stats);  // a diagnostic after the frame's work
+    stats.addStage("diagnostics", clock.lap());
+  }
+  countFrame(f, stats);
+}
 
-  // 2. The partition plane.
+void LzbRenderer::cull(Frame& f) { cullScene(*accel_, *f.camera, culled_, options_.threads); }
+
+void LzbRenderer::placePlane(Frame& f) {
   std::vector<LeafLoad> loads;
   if (lzb_.costPlane) {
-    loads.reserve(culled.leaves.size());
-    for (const CullLeaf& l : culled.leaves)
+    loads.reserve(culled_.leaves.size());
+    for (const CullLeaf& l : culled_.leaves)
       loads.push_back(
           {l.depthMin,
-           uint32_t(accel_->node(culled.paths[l.path].node).leafTriangles(l.leaf).size())});
+           uint32_t(accel_->node(culled_.paths[l.path].node).leafTriangles(l.leaf).size())});
   }
-  last_.plane = plane_.place(*embree_, camera, loads, threads);
-  const double zClip = last_.plane.depth;
-  stats.addStage("plane", clock.lap());
+  last_.plane = plane_.place(*embree_, *f.camera, loads, options_.threads);
+  f.zClip = last_.plane.depth;
+}
 
-  // 3. Near scene by z-buffer, clipped at the plane (the far scene's size counted alongside).
-  uint64_t farTriangles = 0;
-  const DrawLists nearLists = nearScene(*accel_, culled, zClip, threads, &farTriangles);
-  // The near pass goes straight into fb; later passes add to it (a copy stays only on request).
+void LzbRenderer::drawNearPass(Frame& f, Framebuffer& fb) {
+  const Camera& camera = *f.camera;
+  // The far scene's size is counted alongside.
+  f.nearLists = nearScene(*accel_, culled_, f.zClip, options_.threads, &f.farTriangles);
   fb.clear();
   // With a GL PVL to come after a GL near pass, the pass set stays open: the PVL is drawn into
   // the same z-buffer.
-  bool passOpen = false;
   const bool glPvl = lzb_.usesPvl() && lzb_.pvlRender == ZBufferKind::kGl;
-  if (nearLists.triangles > 0 && zClip > camera.nearPlane()) {
+  if (f.nearLists.triangles > 0 && f.zClip > camera.nearPlane()) {
     if (lzb_.nearRender == ZBufferKind::kNative) {
-      native_.draw(scene_, camera, nearLists, {}, threads, fb, zClip);
+      native_.draw(scene_, camera, f.nearLists, {}, options_.threads, fb, f.zClip);
     } else {
-      raster_->begin(camera, zClip);
-      drawLists(*raster_, scene_, nearLists);
+      raster_->begin(camera, f.zClip);
+      drawLists(*raster_, scene_, f.nearLists);
       if (glPvl) {
         raster_->read(fb);
-        passOpen = true;
+        f.glPassOpen = true;
       } else {
         raster_->end(fb);
       }
     }
   }
   if (keepNearPass_) last_.nearPass = fb;
-  stats.addStage("near", clock.lap());
+}
 
-  // 4. Unfinished pixels.
+void LzbRenderer::markUnfinished(Frame& f, const Framebuffer& fb) {
   uint64_t unfinished = 0;
-  const bool nativePvl = lzb_.usesPvl() && !glPvl;
   open_.resize(fb.size());
   const long pixels = long(fb.size());
-#pragma omp parallel for schedule(static) num_threads(threads) reduction(+ : unfinished)
+#pragma omp parallel for schedule(static) num_threads(options_.threads) reduction(+ : unfinished)
   for (long i = 0; i < pixels; ++i) {
     const bool empty = fb.id[size_t(i)] == kNoId;
     open_[size_t(i)] = empty;
     unfinished += empty;
   }
+  f.unfinished = unfinished;
   plane_.observe(unfinished);
-  stats.addStage("unfinished", clock.lap());
+  f.tiles = ScreenTiles(fb.width, fb.height).owned(f.share);
+}
 
-  // 5. Far scene from the unfinished pixels of this rank's tiles.
-  const ScreenTiles tiles(fb.width, fb.height);
-  const std::vector<int> mine = tiles.owned(share);
-  // Rays start a hair before the plane: the near pass kept fragments up to z_clip exactly.
-  const double tMin = std::max(camera.nearPlane(), zClip * (1.0 - 1e-7));
-  const OorObjects* oor = nullptr;
-  if (lzb_.usesOor() && unfinished > 0) {
-    if (!oor_) oor_ = std::make_unique<OorObjects>();
-    oor_->build(*accel_, culled, camera, tMin, tiles, threads);
-    oor = oor_.get();
-    stats.addStage("oor_project", clock.lap());
-  }
-  const TileCastInput input{&camera, open_.data(), tMin, camera.farPlane(), oor};
-  Framebuffer& farFb = farPass_;
-  bool nativeDrawn = false;  // the native z-buffer drew the PVL
-  bool farApart = false;     // farFb holds the far scene, to be composited with the near pass
-  TileCastCounts tileCounts;
-  const long count = unfinished > 0 ? long(mine.size()) : 0;
-  std::vector<std::vector<uint32_t>> tilePixels;
-  tilePixels.resize(size_t(count));
+void LzbRenderer::projectFarObjects(Frame& f) {
+  const Camera& camera = *f.camera;
+  if (!oor_) oor_ = std::make_unique<OorObjects>();
+  oor_->build(*accel_, culled_, camera, rayStart(camera, f.zClip),
+              ScreenTiles(camera.width(), camera.height()), options_.threads);
+  f.oor = oor_.get();
+}
+
+void LzbRenderer::castFarRays(Frame& f) {
+  const Camera& camera = *f.camera;
+  const ScreenTiles tiles(camera.width(), camera.height());
+  const TileCastInput input{&camera, open_.data(), rayStart(camera, f.zClip), camera.farPlane(),
+                            f.oor};
+  const long count = f.unfinished > 0 ? long(f.tiles.size()) : 0;
+  std::vector<std::vector<uint32_t>> tilePixels(static_cast<size_t>(count));
+  const int threads = options_.threads;
   if (!lzb_.usesPvl()) {
-    farFb.resize(fb.width, fb.height);  // and clears
-    farApart = true;
+    farPass_.resize(camera.width(), camera.height());  // and clears
+    f.farApart = true;
 #pragma omp parallel num_threads(threads)
     {
       TileScratch scratch;
       TileCastCounts local;
 #pragma omp for schedule(dynamic, 1)
       for (long k = 0; k < count; ++k) {
-        const int t = mine[size_t(k)];
-        castTileEmbree(*embree_, tiles.tile(t), t, input, scratch, farFb, local,
+        const int t = f.tiles[size_t(k)];
+        castTileEmbree(*embree_, tiles.tile(t), t, input, scratch, farPass_, local,
                        &tilePixels[size_t(k)]);
       }
 #pragma omp critical
-      tileCounts.add(local);
+      f.tileCounts.add(local);
     }
-    stats.addStage("raycast", clock.lap());
+    last_.pvl = {};
   } else {
     if (parts_.size() < size_t(count)) parts_.resize(size_t(count));
     for (RayWalker& w : walkers_) w.setPixelScale(camera.pixelsPerUnitAt(1.0));
@@ -208,86 +234,89 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
       RayWalker& walker = walkers_[size_t(omp_get_thread_num())];
 #pragma omp for schedule(dynamic, 1)
       for (long k = 0; k < count; ++k) {
-        const int t = mine[size_t(k)];
+        const int t = f.tiles[size_t(k)];
         castTilePvl(walker, tiles.tile(t), t, input, scratch, parts_[size_t(k)], local,
                     &tilePixels[size_t(k)]);
         parts_[size_t(k)].finish();
       }
 #pragma omp critical
-      tileCounts.add(local);
+      f.tileCounts.add(local);
     }
     for (RayWalker& w : walkers_) {
       last_.walk.add(w.counts);
       w.counts = {};
     }
-    last_.pvl = mergePvl(*accel_, std::span<const PvlPart>(parts_.data(), size_t(count)), threads);
-    stats.addStage("pvl_find", clock.lap());
-
-    // The PVL by z-buffer, unclipped, on top of the near pass in fb: natively, or by OSMesa
-    // into the open GL pass of a GL near pass (one target to clear, finish and read), else by
-    // OSMesa into a pass of its own composited below. (A pass set left open without a PVL is
-    // dropped: the next begin() starts afresh.)
-    if (last_.pvl.triangles > 0 && nativePvl) {
-      // Native: only the unfinished pixels can change (the near pass is exact where it drew),
-      // and a PVL triangle covers an unfinished pixel only where a ray was cast (OOR polygons
-      // hold the projections of the far content boxes). Every rank draws its PVL part at every
-      // unfinished pixel, so the ranks' composite is the 1-rank image.
-      native_.draw(scene_, camera, last_.pvl, open_, threads, fb);
-      nativeDrawn = true;
-    } else if (last_.pvl.triangles > 0 && passOpen) {
-      raster_->setFarClip(0.0);
-      drawLists(*raster_, scene_, last_.pvl);
-      raster_->end(fb);
-    } else if (last_.pvl.triangles > 0) {  // a pass of its own, composited below
-      raster_->begin(camera, 0.0);
-      drawLists(*raster_, scene_, last_.pvl);
-      raster_->end(farFb);
-      farApart = true;
-    }
-    stats.addStage("pvl_render", clock.lap());
+    last_.pvl =
+        mergePvl(*accel_, std::span<const PvlPart>(parts_.data(), size_t(count)), threads);
   }
-  if (!lzb_.usesPvl()) last_.pvl = {};
   for (auto& p : tilePixels) last_.castPixels.insert(last_.castPixels.end(), p.begin(), p.end());
+}
 
-  // Combine the passes (naive: min over (depth, id)) and shade from the IDs.
-  if (farApart) compositeNearer(fb, farFb);
-  shadeFromIds(scene_, camera, fb);
-  stats.addStage("shade", clock.lap());
+void LzbRenderer::renderPvl(Frame& f, Framebuffer& fb) {
+  const DrawLists& pvl = last_.pvl;
+  if (pvl.triangles == 0) return;  // (a GL pass set left open is dropped: begin() starts afresh)
+  const Camera& camera = *f.camera;
+  if (lzb_.pvlRender == ZBufferKind::kNative) {
+    // Only the unfinished pixels can change (the near pass is exact where it drew), and a PVL
+    // triangle covers an unfinished pixel only where a ray was cast (OOR polygons hold the
+    // projections of the far content boxes). Every rank draws its PVL part at every unfinished
+    // pixel, so the ranks' composite is the 1-rank image.
+    native_.draw(scene_, camera, pvl, open_, options_.threads, fb);
+    f.nativePvl = true;
+  } else if (f.glPassOpen) {
+    // Unclipped into the open GL pass of a GL near pass: one target to clear, finish and read.
+    raster_->setFarClip(0.0);
+    drawLists(*raster_, scene_, pvl);
+    raster_->end(fb);
+  } else {
+    // After a native near pass: a GL pass of its own, composited by (depth, ID) in shade().
+    raster_->begin(camera, 0.0);
+    drawLists(*raster_, scene_, pvl);
+    raster_->end(farPass_);
+    f.farApart = true;
+  }
+}
 
-  if (root && lzb_.depthComplexityGrid > 0) {
-    // Diagnostic (its own stage, after the frame's work): surfaces along a uniform ray grid.
-    const int g = lzb_.depthComplexityGrid;
-    uint64_t surfaces = 0, covered = 0;
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads) reduction(+ : surfaces, covered)
-    for (int j = 0; j < g; ++j) {
-      RayWalker& w = walkers_[size_t(omp_get_thread_num())];
-      for (int i = 0; i < g; ++i) {
-        const double px = (i + 0.5) * camera.width() / g, py = (j + 0.5) * camera.height() / g;
-        const uint64_t n = w.countSurfaces(camera.position(), camera.pixelDirection(px, py),
-                                           camera.nearPlane(), camera.farPlane());
-        surfaces += n;
-        covered += n > 0;
-      }
+void LzbRenderer::shade(Frame& f, Framebuffer& fb) {
+  if (f.farApart) compositeNearer(fb, farPass_);
+  shadeFromIds(scene_, *f.camera, fb);
+}
+
+void LzbRenderer::measureDepthComplexity(const Camera& camera, FrameStats& stats) {
+  const int g = lzb_.depthComplexityGrid;
+  uint64_t surfaces = 0, covered = 0;
+#pragma omp parallel for schedule(dynamic, 1) num_threads(options_.threads) reduction(+ : surfaces, covered)
+  for (int j = 0; j < g; ++j) {
+    RayWalker& w = walkers_[size_t(omp_get_thread_num())];
+    for (int i = 0; i < g; ++i) {
+      const double px = (i + 0.5) * camera.width() / g, py = (j + 0.5) * camera.height() / g;
+      const uint64_t n = w.countSurfaces(camera.position(), camera.pixelDirection(px, py),
+                                         camera.nearPlane(), camera.farPlane());
+      surfaces += n;
+      covered += n > 0;
     }
-    stats.addCount("depth_complexity", double(surfaces) / double(g * g));
-    stats.addCount("depth_complexity_covered", covered ? double(surfaces) / double(covered) : 0.0);
-    stats.addStage("diagnostics", clock.lap());
   }
-  if (root) {
-    stats.addCount("plane_depth", zClip);
-    stats.addCount("plane_fraction",
-                   (zClip - camera.nearPlane()) / (camera.farPlane() - camera.nearPlane()));
-    stats.addCount("plane_reused", last_.plane.reused ? 1.0 : 0.0);
-    stats.addCount("coarse_rays", double(last_.plane.coarseRays));
-    stats.addCount("culled_leaves", double(culled.leaves.size()));
-    stats.addCount("near_leaves", double(nearLists.leaves));
-    stats.addCount("near_triangles", double(nearLists.triangles));
-    stats.addCount("far_triangles", double(farTriangles));
-    stats.addCount("unfinished_pixels", double(unfinished));
-    if (oor) stats.addCount("oor_objects", double(oor->size()));
-  }
-  stats.addCount("rays_cast", double(tileCounts.cast));
-  if (oor) stats.addCount("oor_polygon_tests", double(tileCounts.polygonTests));
+  stats.setShared("depth_complexity", double(surfaces) / double(g * g));
+  stats.setShared("depth_complexity_covered", covered ? double(surfaces) / double(covered) : 0.0);
+}
+
+void LzbRenderer::countFrame(const Frame& f, FrameStats& stats) const {
+  const Camera& camera = *f.camera;
+  // Every rank computes the plane, the cull and the near pass alike.
+  stats.setShared("plane_depth", f.zClip);
+  stats.setShared("plane_fraction",
+                  (f.zClip - camera.nearPlane()) / (camera.farPlane() - camera.nearPlane()));
+  stats.setShared("plane_reused", last_.plane.reused ? 1.0 : 0.0);
+  stats.setShared("coarse_rays", double(last_.plane.coarseRays));
+  stats.setShared("culled_leaves", double(culled_.leaves.size()));
+  stats.setShared("near_leaves", double(f.nearLists.leaves));
+  stats.setShared("near_triangles", double(f.nearLists.triangles));
+  stats.setShared("far_triangles", double(f.farTriangles));
+  stats.setShared("unfinished_pixels", double(f.unfinished));
+  if (f.oor) stats.setShared("oor_objects", double(f.oor->size()));
+  // This rank's share.
+  stats.addCount("rays_cast", double(f.tileCounts.cast));
+  if (f.oor) stats.addCount("oor_polygon_tests", double(f.tileCounts.polygonTests));
   if (lzb_.usesPvl()) {
     const RayWalkCounts& w = last_.walk;
     stats.addCount("octree_nodes_visited", double(w.nodesVisited));
@@ -299,10 +328,8 @@ void LzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
     stats.addCount("pvl_size", double(last_.pvl.triangles));
     stats.addCount("pvl_leaves", double(last_.pvl.leaves));
     // Triangles (pieces, after clipping) that may cover a pixel centre of the image.
-    if (nativeDrawn)
-      stats.addCount("pvl_raster_triangles", double(native_.counts().setUp));
+    if (f.nativePvl) stats.addCount("pvl_raster_triangles", double(native_.counts().setUp));
   }
-  (void)frame;
 }
 
 }  // namespace lzb

@@ -27,6 +27,7 @@
 #include "raycast/lzb_plane.hpp"
 #include "src/zbuffer/native_raster.hpp"
 #include "raycast/lzb_ray_walk.hpp"
+#include "raycast/lzb_tile_cast.hpp"
 #include "src/core/renderer.hpp"
 #include "src/zbuffer/triangle_rasterizer.hpp"
 
@@ -41,8 +42,43 @@ class LzbRenderer : public Renderer {
 
   std::string name() const override { return "lzb"; }
   std::string decomposition() const override;
+  // The stages below in order, each timed.
   void render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
               FrameStats& stats) override;
+  FrameStats setupStats() const override;
+
+  // One frame's state as it passes through the stages.
+  struct Frame {
+    const Camera* camera = nullptr;
+    WorkShare share;
+    double zClip = 0.0;              // the partition plane (view depth)
+    DrawLists nearLists;             // the near scene
+    uint64_t farTriangles = 0;       // triangle entries of culled leaves reaching beyond zClip
+    bool glPassOpen = false;         // the near pass's GL z-buffer awaits the PVL
+    uint64_t unfinished = 0;         // pixels the near pass left empty
+    std::vector<int> tiles;          // this rank's screen tiles
+    const OorObjects* oor = nullptr; // the OOR objects (oor and final stages)
+    TileCastCounts tileCounts;
+    bool farApart = false;     // farPass_ holds far-scene pixels still to composite with fb
+    bool nativePvl = false;    // the native z-buffer drew the PVL
+  };
+  // 1. Hierarchical view-frustum culling of the octrees.
+  void cull(Frame& f);
+  // 2. The partition plane z_clip.
+  void placePlane(Frame& f);
+  // 3. The near scene by z-buffer, clipped at the plane, straight into fb.
+  void drawNearPass(Frame& f, Framebuffer& fb);
+  // 4. The unfinished pixels (left empty by the near pass).
+  void markUnfinished(Frame& f, const Framebuffer& fb);
+  // 5a. OOR objects: projected content boxes of the far leaves (oor and final stages).
+  void projectFarObjects(Frame& f);
+  // 5b. The far scene from the unfinished pixels of this rank's tiles: naive Embree rays into
+  // farPass_, or PVL finding by the octree walk.
+  void castFarRays(Frame& f);
+  // 6. The PVL by z-buffer on top of the near pass.
+  void renderPvl(Frame& f, Framebuffer& fb);
+  // 7. The passes combined, colour from the IDs.
+  void shade(Frame& f, Framebuffer& fb);
 
   // What the last frame did, for tests and studies.
   struct FrameDetail {
@@ -60,6 +96,9 @@ class LzbRenderer : public Renderer {
   const LzbOptions& options() const { return lzb_; }
 
  private:
+  void countFrame(const Frame& f, FrameStats& stats) const;
+  void measureDepthComplexity(const Camera& camera, FrameStats& stats);
+
   const Scene& scene_;
   RenderOptions options_;
   LzbOptions lzb_;
@@ -76,7 +115,6 @@ class LzbRenderer : public Renderer {
   std::vector<uint8_t> open_;  // the near pass's unfinished pixels (1), per pixel
   Framebuffer farPass_;
   FrameDetail last_;
-  bool buildReported_ = false;
   bool keepNearPass_ = false;
 };
 

@@ -8,7 +8,7 @@
 #include "raycast/lzb_test_util.hpp"
 #include "raycast/raycast_renderer.hpp"
 #include "raycast/raycast_test_util.hpp"
-#include "raycast/screen_tiles.hpp"
+#include "mpi/decomposition.hpp"
 
 namespace lzb {
 namespace {
@@ -198,7 +198,7 @@ TEST(LzbRenderer, PlaneInFrontOfEverything) {
   const Framebuffer img = renderFrame(r, cam, {}, &stats);
   EXPECT_EQ(r.lastFrame().nearPass.size(), img.size());
   EXPECT_EQ(r.lastFrame().nearPass.coveredCount(), 0u);
-  EXPECT_EQ(stats.counts.value("unfinished_pixels", 0.0), 128.0 * 96.0);
+  EXPECT_EQ(stats.shared.value("unfinished_pixels", 0.0), 128.0 * 96.0);
   EXPECT_GE(compare(img, renderFrame(zbuffer, cam)).exactIdRate, 0.999);
 }
 
@@ -214,9 +214,9 @@ TEST(LzbRenderer, PlaneBehindEverythingLeavesAnEmptyFarScene) {
   const Camera cam(spec, 128, 96);
   FrameStats stats;
   const Framebuffer img = renderFrame(r, cam, {}, &stats);
-  EXPECT_EQ(stats.counts.value("far_triangles", -1.0), 0.0);
+  EXPECT_EQ(stats.shared.value("far_triangles", -1.0), 0.0);
   EXPECT_EQ(r.lastFrame().pvl.triangles, 0u);
-  EXPECT_GT(stats.counts.value("unfinished_pixels", 0.0), 0.0);  // sky: cast, nothing found
+  EXPECT_GT(stats.shared.value("unfinished_pixels", 0.0), 0.0);  // sky: cast, nothing found
   const Framebuffer ref = renderFrame(zbuffer, cam);
   EXPECT_EQ(img.id, ref.id);  // the near pass alone is the z-buffer image
 }
@@ -309,8 +309,9 @@ TEST(LzbRenderer, SameImageForAnyRankAndThreadCount) {
           FrameStats stats;
           compositeNearer(composite, renderFrame(ranks, cam, {rank, size}, &stats));
           rays += stats.counts.value("rays_cast", 0.0);
-          // Shared counts come from rank 0 only, so sums over ranks stay right.
-          EXPECT_EQ(stats.counts.contains("plane_depth"), rank == 0);
+          // Every rank computes the plane alike: a shared figure, never in the summed counts.
+          EXPECT_TRUE(stats.shared.contains("plane_depth"));
+          EXPECT_FALSE(stats.counts.contains("plane_depth"));
         }
         EXPECT_EQ(composite.id, single.id) << toString(stage) << " on " << size << " ranks";
         EXPECT_EQ(composite.depth, single.depth) << toString(stage) << " on " << size << " ranks";
@@ -333,18 +334,23 @@ TEST(LzbRenderer, ReportsStagesAndCounts) {
   const std::vector<std::string> expected = {"cull",        "plane",    "near",       "unfinished",
                                              "oor_project", "pvl_find", "pvl_render", "shade"};
   EXPECT_EQ(names, expected);
-  EXPECT_EQ(first.stageSeconds[0].first, "build");
-  for (const char* key :
-       {"plane_depth", "plane_reused", "near_triangles", "far_triangles", "unfinished_pixels",
-        "rays_cast", "octree_nodes_visited", "ray_triangle_tests", "pvl_size"})
+  const FrameStats setup = r.setupStats();
+  ASSERT_EQ(setup.stageSeconds.size(), 1u);
+  EXPECT_EQ(setup.stageSeconds[0].first, "build");
+  EXPECT_GT(setup.shared.value("octree_nodes", 0.0), 0.0);
+  // Figures every rank computes alike are shared; this rank's share of the work is counted.
+  for (const char* key : {"plane_depth", "plane_reused", "near_triangles", "far_triangles",
+                          "unfinished_pixels"})
+    EXPECT_TRUE(second.shared.contains(key)) << key;
+  for (const char* key : {"rays_cast", "octree_nodes_visited", "ray_triangle_tests", "pvl_size"})
     EXPECT_TRUE(second.counts.contains(key)) << key;
-  EXPECT_EQ(first.counts.value("plane_reused", -1.0), 0.0);
-  EXPECT_EQ(second.counts.value("plane_reused", -1.0), 1.0);  // same view: the plane is reused
-  EXPECT_EQ(second.counts.value("plane_depth", 0.0), first.counts.value("plane_depth", 1.0));
+  EXPECT_EQ(first.shared.value("plane_reused", -1.0), 0.0);
+  EXPECT_EQ(second.shared.value("plane_reused", -1.0), 1.0);  // same view: the plane is reused
+  EXPECT_EQ(second.shared.value("plane_depth", 0.0), first.shared.value("plane_depth", 1.0));
   const double pixels = 96.0 * 64.0;
-  EXPECT_GT(second.counts.value("unfinished_pixels", 0.0), 0.0);
-  EXPECT_LE(second.counts.value("rays_cast", 0.0), second.counts.value("unfinished_pixels", 0.0));
-  EXPECT_LT(second.counts.value("unfinished_pixels", 0.0), pixels);
+  EXPECT_GT(second.shared.value("unfinished_pixels", 0.0), 0.0);
+  EXPECT_LE(second.counts.value("rays_cast", 0.0), second.shared.value("unfinished_pixels", 0.0));
+  EXPECT_LT(second.shared.value("unfinished_pixels", 0.0), pixels);
 }
 
 }  // namespace

@@ -9,7 +9,7 @@
 #include "raycast/embree_scene.hpp"
 #include "raycast/lzb_oor.hpp"
 #include "raycast/lzb_ray_walk.hpp"
-#include "raycast/screen_tiles.hpp"
+#include "mpi/decomposition.hpp"
 #include "src/core/camera.hpp"
 #include "src/core/framebuffer.hpp"
 

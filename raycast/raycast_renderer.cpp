@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "raycast/screen_tiles.hpp"
+#include "mpi/decomposition.hpp"
 #include "src/core/shading.hpp"
 #include "src/core/timer.hpp"
 
@@ -60,6 +60,16 @@ RaycastRenderer::RaycastRenderer(const Scene& scene, const RenderOptions& option
       tuning_(tuning),
       embree_(scene, withThreads(tuning.embree, options.threads)) {}
 
+FrameStats RaycastRenderer::setupStats() const {
+  const EmbreeBuildStats& b = embree_.buildStats();
+  FrameStats s;
+  s.addStage("build", b.seconds);
+  s.setShared("embree_scenes", double(b.levels));
+  s.setShared("embree_instances", double(b.instances));
+  s.setShared("skipped_instances", double(b.skippedInstances));
+  return s;
+}
+
 std::string RaycastRenderer::decomposition() const {
   return "screen tiles of " + std::to_string(ScreenTiles::kDefaultSide) + "x" +
          std::to_string(ScreenTiles::kDefaultSide) +
@@ -69,14 +79,6 @@ std::string RaycastRenderer::decomposition() const {
 
 void RaycastRenderer::render(const Camera& camera, int frame, const WorkShare& share,
                              Framebuffer& fb, FrameStats& stats) {
-  if (!buildReported_) {
-    const EmbreeBuildStats& b = embree_.buildStats();
-    stats.addStage("build", b.seconds);
-    stats.addCount("embree_scenes", double(b.levels));
-    stats.addCount("embree_instances", double(b.instances));
-    stats.addCount("skipped_instances", double(b.skippedInstances));
-    buildReported_ = true;
-  }
   Stopwatch clock;
 
   const ScreenTiles tiles(fb.width, fb.height);

@@ -16,7 +16,7 @@ struct RaycastTuning {
 
 class RaycastRenderer : public Renderer {
  public:
-  // Builds the Embree scene (reported as stage "build" with the first frame).
+  // Builds the Embree scene (its time is setupStats()'s stage "build").
   RaycastRenderer(const Scene& scene, const RenderOptions& options,
                   const RaycastTuning& tuning = {});
 
@@ -24,6 +24,7 @@ class RaycastRenderer : public Renderer {
   std::string decomposition() const override;
   void render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
               FrameStats& stats) override;
+  FrameStats setupStats() const override;
 
   const EmbreeScene& embreeScene() const { return embree_; }
 
@@ -32,7 +33,6 @@ class RaycastRenderer : public Renderer {
   RenderOptions options_;
   RaycastTuning tuning_;
   EmbreeScene embree_;
-  bool buildReported_ = false;
 };
 
 }  // namespace lzb

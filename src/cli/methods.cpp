@@ -1,54 +1,32 @@
 #include "src/cli/methods.hpp"
 
-#include "raycast/raycast_renderer.hpp"
 #include "src/core/error.hpp"
-#include "src/zbuffer/zbuffer_renderer.hpp"
-// Method plugins of later issues include their header here.
-#include "raycast/lzb_method.hpp"
-#include "src/rzb/rzb_method.hpp"
 
 namespace lzb {
 
-namespace {
-
-template <typename R>
-MethodPlugin exactMethod(std::string name, std::string summary) {
-  return MethodPlugin{std::move(name),
-                      std::move(summary),
-                      [](CLI::App&) {},
-                      [] {},
-                      [] { return nlohmann::json::object(); },
-                      [](const Scene& scene, const RenderOptions& options) -> std::unique_ptr<Renderer> {
-                        return std::make_unique<R>(scene, options);
-                      }};
-}
-
-}  // namespace
-
-const std::vector<MethodPlugin>& methods() {
-  static const std::vector<MethodPlugin> all = {
-      exactMethod<ZBufferRenderer>("zbuffer", "exact: conventional z-buffer through OSMesa"),
-      exactMethod<RaycastRenderer>("raycast", "exact: Embree primary rays"),
-      // Method plugins of later issues: one line each below this comment.
-      lzbMethod(),
-      rzbMethod(),
-  };
+const std::vector<std::unique_ptr<Method>>& methods() {
+  static const std::vector<std::unique_ptr<Method>> all = makeRegisteredMethods();
   return all;
 }
 
-const MethodPlugin& methodNamed(const std::string& name, const std::string& field) {
-  for (const MethodPlugin& m : methods())
-    if (m.name == name) return m;
-  std::string known;
-  for (const MethodPlugin& m : methods()) known += (known.empty() ? "" : ", ") + m.name;
-  throw InputError(field + ": unknown method '" + name + "' (known: " + known + ")");
+std::string methodNames(bool exactOnly) {
+  std::string names;
+  for (const auto& m : methods())
+    if (!exactOnly || m->exact()) names += (names.empty() ? "" : " | ") + m->name();
+  return names;
 }
 
-void checkMethodName(const std::string& method, const std::string& field) { methodNamed(method, field); }
+Method& methodNamed(const std::string& name, const std::string& field) {
+  for (const auto& m : methods())
+    if (m->name() == name) return *m;
+  throw InputError(field + ": unknown method '" + name + "' (known: " + methodNames() + ")");
+}
 
-std::unique_ptr<Renderer> createRenderer(const std::string& method, const Scene& scene,
-                                         const RenderOptions& options) {
-  return methodNamed(method, "--method").create(scene, options);
+Method& exactMethodNamed(const std::string& name, const std::string& field) {
+  Method& m = methodNamed(name, field);
+  require(m.exact(), field,
+          "'" + name + "' is not an exact method (exact: " + methodNames(true) + ")");
+  return m;
 }
 
 }  // namespace lzb

@@ -1,20 +1,19 @@
 #pragma once
-// The registry of --method values.
+// The program's --method values: every registered method (src/core/method.hpp), made once.
 #include <memory>
 #include <string>
 #include <vector>
 
-#include "src/cli/method_plugin.hpp"
-#include "src/core/renderer.hpp"
+#include "src/core/method.hpp"
 
 namespace lzb {
 
-const std::vector<MethodPlugin>& methods();
-const MethodPlugin& methodNamed(const std::string& name, const std::string& field);
-// Throws InputError naming `field` when `method` is not a known method.
-void checkMethodName(const std::string& method, const std::string& field);
-// Throws InputError naming --method for an unknown name.
-std::unique_ptr<Renderer> createRenderer(const std::string& method, const Scene& scene,
-                                         const RenderOptions& options);
+const std::vector<std::unique_ptr<Method>>& methods();
+// The method called `name`; throws InputError naming `field` (with the known names) otherwise.
+Method& methodNamed(const std::string& name, const std::string& field);
+// The exact method called `name` (a --reference); throws InputError naming `field` otherwise.
+Method& exactMethodNamed(const std::string& name, const std::string& field);
+// "a | b | c" over the method names (exact ones only when asked), for --help.
+std::string methodNames(bool exactOnly = false);
 
 }  // namespace lzb

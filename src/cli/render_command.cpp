@@ -25,11 +25,9 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
   c.add_option("scene", a.scene,
                "mesh file (OBJ, PLY, OFF, STL, glTF, ...), scene.toml, or builtin:NAME?key=value")
       ->required();
-  std::string names;
-  for (const MethodPlugin& m : methods()) names += (names.empty() ? "" : " | ") + m.name;
-  c.add_option("--method,-m", a.method, "rendering method: " + names)->capture_default_str();
+  c.add_option("--method,-m", a.method, "rendering method: " + methodNames())->capture_default_str();
   c.add_option("--reference", a.reference,
-               "also render this exact method and report accuracy against it: zbuffer | raycast");
+               "also render this exact method and report accuracy against it: " + methodNames(true));
   c.add_option("--out,-o", a.out, "output folder for frame_NNNN.png/.exr and report.json")
       ->capture_default_str();
   c.add_option("--threads,-t", a.threads, "threads per rank (0: the cores this rank owns)")
@@ -49,14 +47,14 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
   c.add_option("--far", a.farPlane, "far plane distance (0: the scene's, else from the bounds)")
       ->capture_default_str();
   c.add_flag("--quiet,-q", a.quiet, "no progress lines");
-  for (const MethodPlugin& m : methods()) m.addOptions(c);
+  for (const auto& m : methods()) m->addOptions(c);
 }
 
 namespace {
 
 void validate(const RenderArgs& a) {
   methodNamed(a.method, "--method").validate();
-  if (!a.reference.empty()) checkMethodName(a.reference, "--reference");
+  if (!a.reference.empty()) exactMethodNamed(a.reference, "--reference");
   require(a.threads >= 0 && a.threads <= 1024, "--threads", "must be in [0, 1024]");
   require(a.frames >= 1 && a.frames <= 1000000, "--frames", "must be in [1, 1000000]");
   require(a.fov >= 0.0 && a.fov < 180.0, "--fov", "must be in (0, 180) degrees");
@@ -142,14 +140,16 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
   Camera(withClipPlanes(base, scene.bounds()), width, height, "camera");
 
   Stopwatch setupClock;
-  auto renderer = createRenderer(a.method, scene, options);
+  auto renderer = methodNamed(a.method, "--method").create(scene, options);
   std::unique_ptr<Renderer> reference;
-  if (!a.reference.empty()) reference = createRenderer(a.reference, scene, options);
+  if (!a.reference.empty()) reference = methodNamed(a.reference, "--reference").create(scene, options);
   const double setupSeconds = setupClock.seconds();
+
+  const nlohmann::json methodSetup = mpi::gatherStats(g, renderer->setupStats());
 
   Report report(a, options, g, scene, commandLine);
   report.setMethod(*renderer, reference.get());
-  report.setSetup(loadSeconds, setupSeconds);
+  report.setSetup(loadSeconds, setupSeconds, methodSetup);
 
   try {
     renderFrames(a, g, scene, base, width, height, *renderer, reference.get(), report, talk);

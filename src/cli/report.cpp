@@ -57,9 +57,10 @@ void Report::setMethod(const Renderer& method, const Renderer* reference) {
   if (reference) json_["reference_decomposition"] = reference->decomposition();
 }
 
-void Report::setSetup(double loadSeconds, double setupSeconds) {
+void Report::setSetup(double loadSeconds, double setupSeconds, nlohmann::json methodSetup) {
   json_["load_seconds"] = loadSeconds;
   json_["setup_seconds"] = setupSeconds;
+  json_["setup"] = std::move(methodSetup);
 }
 
 void Report::addFrame(int frame, const Camera& camera, nlohmann::json entry, const Framebuffer& image) {

@@ -20,7 +20,8 @@ class Report {
   Report(const RenderArgs& args, const RenderOptions& options, const mpi::Group& g, const Scene& scene,
          const std::string& commandLine);
   void setMethod(const Renderer& method, const Renderer* reference);
-  void setSetup(double loadSeconds, double setupSeconds);
+  // Load and set-up wall times, and the method's own set-up figures (mpi::gatherStats).
+  void setSetup(double loadSeconds, double setupSeconds, nlohmann::json methodSetup);
   void addFrame(int frame, const Camera& camera, nlohmann::json entry, const Framebuffer& image);
   void setTotal(double seconds);
   void write(const std::filesystem::path& path) const;  // atomically

@@ -28,10 +28,13 @@ struct RenderOptions {
   bool quiet = false;
 };
 
-// Per-frame measurements a method reports: stage times in order, and named counts.
+// Measurements a method reports per frame (and once for its set-up): stage times in order, the
+// counts of this rank's share of the work (summed over ranks in the report), and figures every
+// rank computes alike (the plane depth, eps: reported once, from the root).
 struct FrameStats {
   std::vector<std::pair<std::string, double>> stageSeconds;
   nlohmann::json counts = nlohmann::json::object();
+  nlohmann::json shared = nlohmann::json::object();
 
   void addStage(const std::string& name, double seconds) {
     for (auto& [n, s] : stageSeconds)
@@ -44,6 +47,7 @@ struct FrameStats {
   void addCount(const std::string& name, double value) {
     counts[name] = counts.value(name, 0.0) + value;
   }
+  void setShared(const std::string& name, double value) { shared[name] = value; }
 };
 
 class Renderer {
@@ -56,6 +60,8 @@ class Renderer {
   // filled in (see shadeFromIds for the exact methods).
   virtual void render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
                       FrameStats& stats) = 0;
+  // What building the method's structures took (stages) and made (shared counts), reported once.
+  virtual FrameStats setupStats() const { return {}; }
 };
 
 }  // namespace lzb

@@ -1,7 +1,7 @@
 #pragma once
-// Dealing selected boxes to ranks (the MPI box decomposition): by estimated cost, in selection
-// order, which does not depend on the number of ranks. Rank r takes the boxes whose cost midpoint
-// falls in [r, r + 1) * total / size, so every rank gets a contiguous run of about equal cost.
+// The cost model of the point pass, and the selected boxes dealt to ranks by it (the decomposition
+// rule is mpi/decomposition.hpp's dealByCost: contiguous runs of about equal cost, in selection
+// order, which does not depend on the number of ranks).
 #include <cstdint>
 #include <vector>
 

@@ -401,7 +401,7 @@ TEST(RzbBench, EpsCurve) {
                               {"frame_s", bestT},
                               {"select_s", st["select"]},
                               {"reconstruct_s", st["splat"] + st["resolve"] + st["fallback"]},
-                              {"nodes_visited", best.counts["nodes_visited"]},
+                              {"nodes_visited", best.shared["nodes_visited"]},
                               {"boxes", best.counts["boxes_selected"]},
                               {"samples", best.counts["samples_drawn"]}};
     std::printf("BENCH %s\n", j.dump().c_str());

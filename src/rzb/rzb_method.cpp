@@ -67,50 +67,56 @@ RzbParams parseRzbOptions(const std::string& eps, double oversample, int splat,
 
 }  // namespace rzb
 
-MethodPlugin rzbMethod() {
-  struct Storage {
-    std::string eps = "1.5", fallback = "auto", reconstruct = "auto", backfaces = "drop";
-    double oversample = 1.0, areaRatio = 4.0, cacheMb = 0.0;
-    int splat = 1;
-    rzb::RzbParams parsed;
-  };
-  auto s = std::make_shared<Storage>();
-  return MethodPlugin{
-      "rzb",
-      "approximate: randomized z-buffer point pass with z-buffer fallback and sample cache",
-      [s](CLI::App& app) {
-        app.add_option("--eps", s->eps,
-                       "rzb: depth accuracy eps > 1 (a box is selected when (zmax/zmin)^2 <= eps), "
-                       "or 'auto' (least modelled cost per frame)")
-            ->capture_default_str();
-        app.add_option("--oversample", s->oversample,
-                       "rzb: scales the ln(pixels) samples per pixel of projected area")
-            ->capture_default_str();
-        app.add_option("--splat", s->splat, "rzb: splat size d (d x d pixels; d^2 fewer samples)")
-            ->capture_default_str();
-        app.add_option("--fallback", s->fallback,
-                       "rzb: boxes whose triangles project above this many pixels are rasterized "
-                       "by the z-buffer: auto (d^2 / ln pixels), off, or a number")
-            ->capture_default_str();
-        app.add_option("--reconstruct", s->reconstruct,
-                       "rzb: pixel | splat | gauss (Gaussian average of visible samples, 10x "
-                       "samples) | auto (pixel for d = 1, else splat)")
-            ->capture_default_str();
-        app.add_option("--area-ratio", s->areaRatio, "rzb: area class width, 2..64")
-            ->capture_default_str();
-        app.add_option("--cache-mb", s->cacheMb, "rzb: sample cache budget in MiB (0: no cache)")
-            ->capture_default_str();
-        app.add_option("--backfaces", s->backfaces, "rzb: drop | keep samples on back faces")
-            ->capture_default_str();
-      },
-      [s] {
-        s->parsed = rzb::parseRzbOptions(s->eps, s->oversample, s->splat, s->fallback,
-                                         s->reconstruct, s->areaRatio, s->cacheMb, s->backfaces);
-      },
-      [s] { return s->parsed.toJson(); },
-      [s](const Scene& scene, const RenderOptions& options) -> std::unique_ptr<Renderer> {
-        return std::make_unique<rzb::RzbRenderer>(scene, options, s->parsed);
-      }};
-}
+namespace {
+
+class RzbMethod : public Method {
+ public:
+  std::string name() const override { return "rzb"; }
+  std::string summary() const override {
+    return "approximate: randomized z-buffer point pass with z-buffer fallback and sample cache";
+  }
+  void addOptions(CLI::App& app) override {
+    app.add_option("--eps", eps_,
+                   "rzb: depth accuracy eps > 1 (a box is selected when (zmax/zmin)^2 <= eps), or "
+                   "'auto' (least modelled cost per frame)")
+        ->capture_default_str();
+    app.add_option("--oversample", oversample_,
+                   "rzb: scales the ln(pixels) samples per pixel of projected area")
+        ->capture_default_str();
+    app.add_option("--splat", splat_, "rzb: splat size d (d x d pixels; d^2 fewer samples)")
+        ->capture_default_str();
+    app.add_option("--fallback", fallback_,
+                   "rzb: boxes whose triangles project above this many pixels are rasterized by "
+                   "the z-buffer: auto (d^2 / ln pixels), off, or a number")
+        ->capture_default_str();
+    app.add_option("--reconstruct", reconstruct_,
+                   "rzb: pixel | splat | gauss (Gaussian average of visible samples, 10x samples) "
+                   "| auto (pixel for d = 1, else splat)")
+        ->capture_default_str();
+    app.add_option("--area-ratio", areaRatio_, "rzb: area class width, 2..64")->capture_default_str();
+    app.add_option("--cache-mb", cacheMb_, "rzb: sample cache budget in MiB (0: no cache)")
+        ->capture_default_str();
+    app.add_option("--backfaces", backfaces_, "rzb: drop | keep samples on back faces")
+        ->capture_default_str();
+  }
+  void validate() override {
+    params_ = rzb::parseRzbOptions(eps_, oversample_, splat_, fallback_, reconstruct_, areaRatio_,
+                                   cacheMb_, backfaces_);
+  }
+  nlohmann::json parameters() const override { return params_.toJson(); }
+  std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const override {
+    return std::make_unique<rzb::RzbRenderer>(scene, options, params_);
+  }
+
+ private:
+  std::string eps_ = "1.5", fallback_ = "auto", reconstruct_ = "auto", backfaces_ = "drop";
+  double oversample_ = 1.0, areaRatio_ = 4.0, cacheMb_ = 0.0;
+  int splat_ = 1;
+  rzb::RzbParams params_;
+};
+
+}  // namespace
+
+std::unique_ptr<Method> makeRzbMethod() { return std::make_unique<RzbMethod>(); }
 
 }  // namespace lzb

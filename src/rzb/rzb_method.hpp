@@ -1,12 +1,15 @@
 #pragma once
-// --method rzb on `lzb render`: its options (--eps, --oversample, --splat, --fallback,
+// --method rzb on `lzb render` (the method contract of src/core/method.hpp): its options (--eps, --oversample, --splat, --fallback,
 // --reconstruct, --area-ratio, --cache-mb, --backfaces), their validation and report record.
-#include "src/cli/method_plugin.hpp"
+#include <memory>
+#include <string>
+
+#include "src/core/method.hpp"
 #include "src/rzb/rzb_params.hpp"
 
 namespace lzb {
 
-MethodPlugin rzbMethod();
+std::unique_ptr<Method> makeRzbMethod();
 
 namespace rzb {
 // Parses the option strings as the CLI gives them (tests use this too); throws InputError.

@@ -48,15 +48,16 @@ TEST(RzbOptions, OutOfRangeValuesNameTheOption) {
             std::string::npos);
 }
 
-TEST(RzbOptions, PluginRegistersItsOptions) {
-  const MethodPlugin plugin = rzbMethod();
-  EXPECT_EQ(plugin.name, "rzb");
+TEST(RzbOptions, MethodRegistersItsOptions) {
+  const std::unique_ptr<Method> method = makeRzbMethod();
+  EXPECT_EQ(method->name(), "rzb");
+  EXPECT_FALSE(method->exact());
   CLI::App app;
-  plugin.addOptions(app);
+  method->addOptions(app);
   const char* argv[] = {"x", "--eps", "2.5", "--splat", "2", "--cache-mb", "32"};
   app.parse(7, const_cast<char**>(argv));
-  plugin.validate();
-  const nlohmann::json j = plugin.parameters();
+  method->validate();
+  const nlohmann::json j = method->parameters();
   EXPECT_EQ(j["eps"].get<double>(), 2.5);
   EXPECT_EQ(j["splat"].get<int>(), 2);
   EXPECT_EQ(j["reconstruct"].get<std::string>(), "splat");

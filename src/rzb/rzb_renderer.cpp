@@ -24,6 +24,7 @@ constexpr double kMaxBoxLayers = 16.0;
 RzbRenderer::RzbRenderer(const Scene& scene, const RenderOptions& options, const RzbParams& params)
     : scene_(scene), options_(options), params_(params), fallback_(scene) {
   params_.validate();
+  options_.threads = std::max(options_.threads, 1);
   TreeParams tp;
   tp.areaRatio = params_.areaRatio;
   tp.progress = !options.quiet;
@@ -44,170 +45,195 @@ std::string RzbRenderer::decomposition() const {
 
 void RzbRenderer::render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
                          FrameStats& stats) {
-  const int threads = std::max(options_.threads, 1);
-  const uint64_t frameTick = ++frameCounter_;
-  const CacheCounts cacheBefore = cache_ ? cache_->counts() : CacheCounts{};
-  const double pixels = double(camera.width()) * double(camera.height());
-  if (cache_)
-    require(cache_->budget() >= RzbParams::minCacheBytes(camera.width(), camera.height(),
-                                                         params_.splat),
-            "--cache-mb",
-            "is below one box: a box covering the " + std::to_string(camera.width()) + "x" +
-                std::to_string(camera.height()) + " image needs " +
-                std::to_string(RzbParams::minCacheBytes(camera.width(), camera.height(),
-                                                        params_.splat) /
-                               1024) +
-                " KiB");
+  Frame f(camera, frame, share, options_.seed);
+  f.tick = ++frameCounter_;
+  f.cacheBefore = cache_ ? cache_->counts() : CacheCounts{};
+  checkCacheBudget(camera);
   Stopwatch clock;
+  select(f);
+  stats.addStage("select", clock.lap());
+  deal(f);
+  drawFallback(f);
+  stats.addStage("fallback", clock.lap());
+  if (usesCache()) {
+    prepareCachedSamples(f);
+    stats.addStage("cache_build", clock.lap());
+  } else {
+    prepareFreshSamples(f);
+  }
+  splat(f);
+  stats.addStage("splat", clock.lap());
+  resolve(f, fb);
+  stats.addStage("resolve", clock.lap());
+  shade(f, fb);
+  stats.addStage("shade", clock.lap());
+  countFrame(f, stats);
+}
 
-  // 1. Box selection (every rank, the same result).
-  SelectParams sp;
+void RzbRenderer::checkCacheBudget(const Camera& camera) const {
+  if (!cache_) return;
+  const uint64_t need = RzbParams::minCacheBytes(camera.width(), camera.height(), params_.splat);
+  require(cache_->budget() >= need, "--cache-mb",
+          "is below one box: a box covering the " + std::to_string(camera.width()) + "x" +
+              std::to_string(camera.height()) + " image needs " + std::to_string(need / 1024) +
+              " KiB");
+}
+
+bool RzbRenderer::usesCache() const {
+  return cache_ && params_.reconstruct != Reconstruct::kGauss;
+}
+
+void RzbRenderer::select(Frame& f) {
+  const Camera& camera = *f.camera;
+  const double pixels = double(camera.width()) * double(camera.height());
+  SelectParams& sp = f.select;
   sp.eps = params_.eps;
   sp.samplesPerPixel = params_.samplesPerPixel(pixels);
   sp.fallbackPx = params_.fallbackThreshold(pixels);
   sp.maxBoxSamples = kMaxBoxLayers * pixels * sp.samplesPerPixel;
-  const SampleStream stream(options_.seed, uint64_t(frame));
   if (params_.autoEps) {
-    const EpsSearch found = searchEps(*trees_, camera, sp, stream, lastEps_);
+    const EpsSearch found = searchEps(*trees_, camera, sp, f.stream, lastEps_);
     sp.eps = found.eps;
-    stats.addCount("eps_evaluations", found.evaluations);
+    f.epsEvaluations = found.evaluations;
   }
   lastEps_ = sp.eps;
-  const Selection sel = selectBoxes(*trees_, camera, sp, stream);
-  stats.addStage("select", clock.lap());
+  f.sel = selectBoxes(*trees_, camera, sp, f.stream);
+}
 
-  // 2. This rank's boxes (gauss: all on rank 0).
-  std::vector<uint32_t> mine;
+void RzbRenderer::deal(Frame& f) {
+  // gauss sums colours over all visible samples, which depth compositing cannot combine.
   if (params_.reconstruct == Reconstruct::kGauss) {
-    if (share.rank == 0) mine = dealBoxes(sel.boxes, WorkShare{});
+    if (f.share.rank == 0) f.mine = dealBoxes(f.sel.boxes, WorkShare{});
   } else {
-    mine = dealBoxes(sel.boxes, share);
+    f.mine = dealBoxes(f.sel.boxes, f.share);
   }
+}
 
-  // 3. Fallback boxes through the exact z-buffer.
-  FallbackCounts fc;
-  Framebuffer raster;
-  bool rastered = false;
-  if (std::any_of(mine.begin(), mine.end(), [&](uint32_t i) { return sel.boxes[i].fallback; })) {
-    raster.resize(camera.width(), camera.height());
-    rastered = fallback_.draw(camera, sel.boxes, mine, raster, fc);
+void RzbRenderer::drawFallback(Frame& f) {
+  const std::vector<SelectedBox>& boxes = f.sel.boxes;
+  if (std::none_of(f.mine.begin(), f.mine.end(), [&](uint32_t i) { return boxes[i].fallback; }))
+    return;
+  f.raster.resize(f.camera->width(), f.camera->height());
+  f.rastered = fallback_.draw(*f.camera, boxes, f.mine, f.raster, f.fallback);
+}
+
+void RzbRenderer::prepareFreshSamples(Frame& f) {
+  for (uint32_t i : f.mine)
+    if (!f.sel.boxes[i].fallback) appendJobs(f.jobs, i, f.sel.boxes[i].samples, nullptr);
+}
+
+void RzbRenderer::prepareCachedSamples(Frame& f) {
+  const int threads = options_.threads;
+  const std::vector<SelectedBox>& boxes = f.sel.boxes;
+  struct Want {
+    uint32_t box;
+    int level;
+    const std::vector<CachedSample>* set;
+  };
+  std::vector<Want> wants;
+  for (uint32_t i : f.mine) {
+    const SelectedBox& b = boxes[i];
+    if (b.fallback) continue;
+    const int level = cacheLevel(b.ppu);
+    wants.push_back({i, level, cache_->lookup(b.key, level, f.tick)});
   }
-  stats.addStage("fallback", clock.lap());
-
-  // 4. Sample boxes: fresh from the frame's stream, or the cache's sets.
-  std::vector<SplatJob> jobs;
-  std::vector<std::vector<CachedSample>> uncached;  // sets over the budget, this frame only
-  uint64_t generatedForCache = 0;
-  const SampleStream* splatStream = &stream;
-  if (cache_ && params_.reconstruct != Reconstruct::kGauss) {
-    struct Want {
-      uint32_t box;
-      int level;
-      const std::vector<CachedSample>* set;
-    };
-    std::vector<Want> wants;
-    for (uint32_t i : mine) {
-      const SelectedBox& b = sel.boxes[i];
-      if (b.fallback) continue;
-      const int level = cacheLevel(b.ppu);
-      wants.push_back({i, level, cache_->lookup(b.key, level, frameTick)});
-    }
-    std::vector<size_t> small, large;
-    for (size_t k = 0; k < wants.size(); ++k) {
-      if (wants[k].set) continue;
-      const SelectedBox& b = sel.boxes[wants[k].box];
-      const double expected = b.area * std::ldexp(1.0, wants[k].level) * sp.samplesPerPixel;
-      (expected < double(kSmallSet) ? small : large).push_back(k);
-    }
-    std::vector<std::vector<CachedSample>> built(wants.size());
-    uncached.reserve(wants.size());  // pointers into it must stay valid
-    std::vector<uint64_t> drawn(wants.size(), 0);
+  std::vector<size_t> small, large;
+  for (size_t k = 0; k < wants.size(); ++k) {
+    if (wants[k].set) continue;
+    const SelectedBox& b = boxes[wants[k].box];
+    const double expected = b.area * std::ldexp(1.0, wants[k].level) * f.select.samplesPerPixel;
+    (expected < double(kSmallSet) ? small : large).push_back(k);
+  }
+  std::vector<std::vector<CachedSample>> built(wants.size());
+  f.uncached.reserve(wants.size());  // pointers into it must stay valid
+  std::vector<uint64_t> drawn(wants.size(), 0);
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-    for (size_t s = 0; s < small.size(); ++s) {
-      const size_t k = small[s];
-      built[k] = buildSampleSet(sel.boxes[wants[k].box], wants[k].level, options_.seed,
-                                sp.samplesPerPixel, params_.splat, 1, &drawn[k]);
-    }
-    for (size_t k : large)
-      built[k] = buildSampleSet(sel.boxes[wants[k].box], wants[k].level, options_.seed,
-                                sp.samplesPerPixel, params_.splat, threads, &drawn[k]);
-    for (size_t k = 0; k < wants.size(); ++k) {
-      if (wants[k].set) continue;
-      generatedForCache += drawn[k];
-      const std::vector<CachedSample>* stored =
-          cache_->store(sel.boxes[wants[k].box].key, wants[k].level, std::move(built[k]), frameTick);
-      if (!stored) {
-        // Over budget: use it this frame only (the same samples a cached set would give).
-        uncached.push_back(std::move(built[k]));
-        stored = &uncached.back();
-      }
-      wants[k].set = stored;
-    }
-    for (const Want& w : wants)
-      appendJobs(jobs, w.box, w.set->size(), w.set->data());
-    stats.addStage("cache_build", clock.lap());
-  } else {
-    for (uint32_t i : mine)
-      if (!sel.boxes[i].fallback) appendJobs(jobs, i, sel.boxes[i].samples, nullptr);
+  for (size_t s = 0; s < small.size(); ++s) {
+    const size_t k = small[s];
+    built[k] = buildSampleSet(boxes[wants[k].box], wants[k].level, options_.seed,
+                              f.select.samplesPerPixel, params_.splat, 1, &drawn[k]);
   }
-
-  // 5. Splat, resolve, composite with the fallback.
-  const SplatSetup setup = SplatSetup::from(camera, params_.splat);
-  keys_.reset(camera.width(), camera.height(), scene_.expandedTriangles() > 0xffffffffull, threads);
-  const PassCounts pc = splatJobs(jobs, sel.boxes, *splatStream, setup, params_.dropBackfaces, keys_, threads);
-  stats.addStage("splat", clock.lap());
-  keys_.resolve(fb, threads);
-  if (rastered) compositeNearer(fb, raster);
-  stats.addStage("resolve", clock.lap());
-
-  // 6. Colour: the one shading rule from the IDs; gauss: the average of visible samples.
-  shadeFromIds(scene_, camera, fb);
-  if (params_.reconstruct == Reconstruct::kGauss && !mine.empty()) {
-    std::vector<uint64_t> accum;
-    const PassCounts gc =
-        gaussAccumulate(jobs, sel.boxes, *splatStream, setup, params_.dropBackfaces, fb.depth, scene_, accum, threads);
-    const long n = long(fb.size());
-#pragma omp parallel for schedule(static) num_threads(threads)
-    for (long i = 0; i < n; ++i) {
-      const uint64_t* a = accum.data() + 4 * size_t(i);
-      if (!a[3]) continue;
-      auto avg = [&](int k) { return uint8_t((a[k] + a[3] / 2) / a[3]); };
-      fb.color[size_t(i)] = packRgba8(avg(0), avg(1), avg(2));
+  for (size_t k : large)
+    built[k] = buildSampleSet(boxes[wants[k].box], wants[k].level, options_.seed,
+                              f.select.samplesPerPixel, params_.splat, threads, &drawn[k]);
+  for (size_t k = 0; k < wants.size(); ++k) {
+    if (wants[k].set) continue;
+    f.generatedForCache += drawn[k];
+    const std::vector<CachedSample>* stored =
+        cache_->store(boxes[wants[k].box].key, wants[k].level, std::move(built[k]), f.tick);
+    if (!stored) {
+      // Over budget: use it this frame only (the same samples a cached set would give).
+      f.uncached.push_back(std::move(built[k]));
+      stored = &f.uncached.back();
     }
-    stats.addCount("gauss_visible_samples", double(gc.splatted));
+    wants[k].set = stored;
   }
-  stats.addStage("shade", clock.lap());
+  for (const Want& w : wants) appendJobs(f.jobs, w.box, w.set->size(), w.set->data());
+}
 
-  // Report.
+void RzbRenderer::splat(Frame& f) {
+  const Camera& camera = *f.camera;
+  f.setup = SplatSetup::from(camera, params_.splat);
+  keys_.reset(camera.width(), camera.height(), scene_.expandedTriangles() > 0xffffffffull,
+              options_.threads);
+  f.pass = splatJobs(f.jobs, f.sel.boxes, f.stream, f.setup, params_.dropBackfaces, keys_,
+                     options_.threads);
+}
+
+void RzbRenderer::resolve(Frame& f, Framebuffer& fb) {
+  keys_.resolve(fb, options_.threads);
+  if (f.rastered) compositeNearer(fb, f.raster);
+}
+
+void RzbRenderer::shade(Frame& f, Framebuffer& fb) {
+  shadeFromIds(scene_, *f.camera, fb);
+  if (params_.reconstruct != Reconstruct::kGauss || f.mine.empty()) return;
+  std::vector<uint64_t> accum;
+  f.gauss = gaussAccumulate(f.jobs, f.sel.boxes, f.stream, f.setup, params_.dropBackfaces,
+                            fb.depth, scene_, accum, options_.threads);
+  const long n = long(fb.size());
+#pragma omp parallel for schedule(static) num_threads(options_.threads)
+  for (long i = 0; i < n; ++i) {
+    const uint64_t* a = accum.data() + 4 * size_t(i);
+    if (!a[3]) continue;
+    auto avg = [&](int k) { return uint8_t((a[k] + a[3] / 2) / a[3]); };
+    fb.color[size_t(i)] = packRgba8(avg(0), avg(1), avg(2));
+  }
+}
+
+void RzbRenderer::countFrame(const Frame& f, FrameStats& stats) const {
+  const std::vector<SelectedBox>& boxes = f.sel.boxes;
+  // Box selection runs alike on every rank.
+  stats.setShared("eps", f.select.eps);
+  if (params_.autoEps) stats.setShared("eps_evaluations", f.epsEvaluations);
+  stats.setShared("nodes_visited", double(f.sel.nodesVisited));
+  stats.setShared("capped_boxes", double(f.sel.cappedBoxes));
+  // This rank's boxes.
   uint64_t sampleBoxes = 0, fallbackBoxes = 0;
-  for (uint32_t i : mine) (sel.boxes[i].fallback ? fallbackBoxes : sampleBoxes) += 1;
-  stats.addCount("eps", share.rank == 0 ? sp.eps : 0.0);
-  stats.addCount("nodes_visited", share.rank == 0 ? double(sel.nodesVisited) : 0.0);
-  stats.addCount("boxes_selected", double(mine.size()));
-  stats.addCount("sample_boxes", double(sampleBoxes));
-  stats.addCount("samples_drawn", double(pc.drawn));
-  stats.addCount("samples_splatted", double(pc.splatted));
-  stats.addCount("samples_backfacing", double(pc.backfacing));
   double projected = 0.0;
-  for (uint32_t i : mine)
-    if (!sel.boxes[i].fallback) projected += sel.boxes[i].area * sel.boxes[i].ppu * sel.boxes[i].ppu;
-  stats.addCount("projected_area_px", projected);
-  if (share.size == 1) {
-    stats.addCount("samples_per_pixel_of_projected_area", projected > 0 ? double(pc.drawn) / projected : 0.0);
-    const double covered = double(fb.coveredCount());
-    stats.addCount("samples_per_covered_pixel", covered > 0 ? double(pc.splatted) / covered : 0.0);
+  for (uint32_t i : f.mine) {
+    const SelectedBox& b = boxes[i];
+    (b.fallback ? fallbackBoxes : sampleBoxes) += 1;
+    if (!b.fallback) projected += b.area * b.ppu * b.ppu;
   }
-  stats.addCount("capped_boxes", share.rank == 0 ? double(sel.cappedBoxes) : 0.0);
+  stats.addCount("boxes_selected", double(f.mine.size()));
+  stats.addCount("sample_boxes", double(sampleBoxes));
+  stats.addCount("samples_drawn", double(f.pass.drawn));
+  stats.addCount("samples_splatted", double(f.pass.splatted));
+  stats.addCount("samples_backfacing", double(f.pass.backfacing));
+  stats.addCount("projected_area_px", projected);
   stats.addCount("fallback_boxes", double(fallbackBoxes));
-  stats.addCount("fallback_triangles", double(fc.triangles));
+  stats.addCount("fallback_triangles", double(f.fallback.triangles));
+  if (params_.reconstruct == Reconstruct::kGauss)
+    stats.addCount("gauss_visible_samples", double(f.gauss.splatted));
   if (cache_) {
     const CacheCounts& cc = cache_->counts();
-    stats.addCount("cache_hits", double(cc.hits - cacheBefore.hits));
-    stats.addCount("cache_misses", double(cc.misses - cacheBefore.misses));
-    stats.addCount("cache_evictions", double(cc.evictions - cacheBefore.evictions));
-    stats.addCount("cache_uncached", double(cc.uncached - cacheBefore.uncached));
+    stats.addCount("cache_hits", double(cc.hits - f.cacheBefore.hits));
+    stats.addCount("cache_misses", double(cc.misses - f.cacheBefore.misses));
+    stats.addCount("cache_evictions", double(cc.evictions - f.cacheBefore.evictions));
+    stats.addCount("cache_uncached", double(cc.uncached - f.cacheBefore.uncached));
     stats.addCount("cache_bytes", double(cache_->bytes()));
-    stats.addCount("cache_samples_generated", double(generatedForCache));
+    stats.addCount("cache_samples_generated", double(f.generatedForCache));
   }
 }
 

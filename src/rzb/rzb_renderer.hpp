@@ -26,8 +26,47 @@ class RzbRenderer : public Renderer {
 
   std::string name() const override { return "rzb"; }
   std::string decomposition() const override;
+  // The stages below in order, each timed.
   void render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
               FrameStats& stats) override;
+
+  // One frame's state as it passes through the stages.
+  struct Frame {
+    Frame(const Camera& c, int frame, const WorkShare& s, uint64_t seed)
+        : camera(&c), share(s), stream(seed, uint64_t(frame)) {}
+    const Camera* camera;
+    WorkShare share;
+    SampleStream stream;  // the frame's randomness, keyed by (seed, frame)
+    uint64_t tick = 0;    // frames rendered so far (the cache's clock)
+    CacheCounts cacheBefore;
+    SelectParams select;
+    double epsEvaluations = 0.0;
+    Selection sel;
+    std::vector<uint32_t> mine;  // this rank's boxes (indices into sel.boxes)
+    FallbackCounts fallback;
+    Framebuffer raster;  // the fallback boxes' triangles (when rastered)
+    bool rastered = false;
+    std::vector<SplatJob> jobs;
+    std::vector<std::vector<CachedSample>> uncached;  // sets over the budget, this frame only
+    uint64_t generatedForCache = 0;
+    SplatSetup setup;
+    PassCounts pass, gauss;
+  };
+  // 1. Box selection by eps (every rank alike).
+  void select(Frame& f);
+  // 2. This rank's boxes, by cost (gauss: all on rank 0).
+  void deal(Frame& f);
+  // 3. The fallback boxes' triangles by the exact z-buffer.
+  void drawFallback(Frame& f);
+  // 4. The sample boxes' jobs: drawn fresh from the frame's stream, or the cache's sets.
+  void prepareFreshSamples(Frame& f);
+  void prepareCachedSamples(Frame& f);
+  // 5. The samples splatted into the key buffer.
+  void splat(Frame& f);
+  // 6. Keys to depth and ID, composited with the fallback.
+  void resolve(Frame& f, Framebuffer& fb);
+  // 7. Colour: the one shading rule from the IDs, or the Gaussian average of visible samples.
+  void shade(Frame& f, Framebuffer& fb);
 
   const RzbParams& params() const { return params_; }
   // The sample trees, also for dynamic updates between frames (SampleScene's API).
@@ -36,6 +75,10 @@ class RzbRenderer : public Renderer {
   double lastEps() const { return lastEps_; }
 
  private:
+  void checkCacheBudget(const Camera& camera) const;
+  bool usesCache() const;
+  void countFrame(const Frame& f, FrameStats& stats) const;
+
   const Scene& scene_;
   RenderOptions options_;
   RzbParams params_;

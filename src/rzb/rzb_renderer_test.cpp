@@ -247,7 +247,7 @@ TEST(RzbRenderer, AutoEpsPicksAValueInRange) {
   const Framebuffer fb = renderWith(r, camera, 0, {}, &stats);
   EXPECT_GE(r.lastEps(), 1.1 - 1e-9);
   EXPECT_LE(r.lastEps(), 5.0 + 1e-9);
-  EXPECT_GT(stats.counts["eps_evaluations"].get<double>(), 3.0);
+  EXPECT_GT(stats.shared["eps_evaluations"].get<double>(), 3.0);
   EXPECT_GE(visibleInPixelRate(fb, scene, camera), 0.99);
 }
 

@@ -11,7 +11,7 @@
 #include "src/core/bounds.hpp"
 #include "src/core/camera.hpp"
 #include "src/core/scene.hpp"
-#include "src/zbuffer/share_range.hpp"
+#include "mpi/decomposition.hpp"
 
 namespace lzb {
 

@@ -4,7 +4,7 @@
 
 #include "src/core/shading.hpp"
 #include "src/core/timer.hpp"
-#include "src/zbuffer/share_range.hpp"
+#include "mpi/decomposition.hpp"
 
 namespace lzb {
 

@@ -1,0 +1,73 @@
+#include "mpi/decomposition.hpp"
+
+#include <gtest/gtest.h>
+
+#include <numeric>
+
+namespace lzb {
+namespace {
+
+TEST(Decomposition, IdRangesCoverTheTotalOnceInRankOrder) {
+  for (uint64_t total : {0ull, 1ull, 7ull, 1000ull, (1ull << 46) + 3}) {
+    for (int size : {1, 2, 3, 5, 64}) {
+      uint64_t next = 0, longest = 0, shortest = ~0ull;
+      for (int rank = 0; rank < size; ++rank) {
+        const IdRange r = shareRange(total, {rank, size});
+        EXPECT_EQ(r.begin, next);
+        longest = std::max(longest, r.end - r.begin);
+        shortest = std::min(shortest, r.end - r.begin);
+        next = r.end;
+      }
+      EXPECT_EQ(next, total);
+      EXPECT_LE(longest - shortest, 1u) << total << " over " << size;
+    }
+  }
+}
+
+TEST(Decomposition, ScreenTilesCoverTheImageOnceAcrossRanks) {
+  const ScreenTiles tiles(100, 37);
+  EXPECT_EQ(tiles.count(), 7 * 3);
+  for (int size : {1, 2, 3, 4}) {
+    std::vector<int> hits(100 * 37, 0);
+    for (int rank = 0; rank < size; ++rank)
+      for (int t : tiles.owned({rank, size})) {
+        EXPECT_EQ(t % size, rank);
+        const TileRect r = tiles.tile(t);
+        for (int y = r.y0; y < r.y1; ++y)
+          for (int x = r.x0; x < r.x1; ++x) ++hits[size_t(y * 100 + x)];
+      }
+    for (int h : hits) ASSERT_EQ(h, 1) << size << " ranks";
+  }
+}
+
+TEST(Decomposition, ItemsByCostGoOnceInContiguousRunsOfAboutEqualCost) {
+  std::vector<double> costs;
+  for (int i = 0; i < 200; ++i) costs.push_back(1.0 + (i * 37) % 11);
+  const double total = std::accumulate(costs.begin(), costs.end(), 0.0);
+  for (int size : {1, 2, 3, 7}) {
+    std::vector<int> owner(costs.size(), -1);
+    for (int rank = 0; rank < size; ++rank) {
+      const std::vector<uint32_t> mine = dealByCost(costs, {rank, size});
+      double cost = 0.0;
+      for (size_t k = 0; k < mine.size(); ++k) {
+        EXPECT_EQ(owner[mine[k]], -1);
+        owner[mine[k]] = rank;
+        if (k) EXPECT_EQ(mine[k], mine[k - 1] + 1) << "contiguous";
+        cost += costs[mine[k]];
+      }
+      // A run is within one item's cost (at most 11) of its equal share.
+      EXPECT_NEAR(cost, total / size, 11.0) << rank << " of " << size;
+    }
+    for (size_t i = 1; i < owner.size(); ++i) EXPECT_GE(owner[i], owner[i - 1]) << "rank order";
+    for (int o : owner) EXPECT_GE(o, 0);
+  }
+}
+
+TEST(Decomposition, ZeroCostItemsAllGoToTheFirstRank) {
+  const std::vector<double> costs(5, 0.0);
+  EXPECT_EQ(dealByCost(costs, {0, 3}).size(), 5u);
+  EXPECT_TRUE(dealByCost(costs, {1, 3}).empty());
+}
+
+}  // namespace
+}  // namespace lzb
