@@ -1,5 +1,8 @@
 #include "mpi/group.hpp"
 
+#include <cstdio>
+#include <cstdlib>
+
 namespace lzb::mpi {
 
 void check(int code, const char* call, const char* file, int line) {
@@ -22,6 +25,13 @@ Session::Session(int* argc, char*** argv) {
   int provided = 0;
   // Only the main thread calls MPI; OpenMP threads never do.
   LZB_MPI_CALL(MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided));
+  if (provided < MPI_THREAD_FUNNELED) {
+    // Every rank links the same MPI library, so every rank stops here alike.
+    std::fprintf(stderr, "lzb: error: the MPI library provides thread level %d; lzb needs "
+                 "MPI_THREAD_FUNNELED (%d) for its OpenMP threads\n", provided, MPI_THREAD_FUNNELED);
+    MPI_Finalize();
+    std::exit(1);
+  }
   // Errors come back as codes so LZB_MPI_CALL can turn them into exceptions.
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
 }

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "mpi/failure.hpp"
 #include "mpi/group.hpp"
 #include "src/cli/compare_command.hpp"
 #include "src/cli/info_command.hpp"
@@ -40,25 +41,32 @@ int main(int argc, char** argv) {
                     compare);
 
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::Success& e) {
-    if (g.root()) app.exit(e);
-    return 0;
-  } catch (const CLI::ParseError& e) {
-    if (g.root()) std::fprintf(stderr, "lzb: error: %s\nRun 'lzb --help' for the options.\n", e.what());
-    return 2;
-  }
-
-  try {
+    // Parsing is agreed on like every step that can fail on one rank alone.
+    bool helpShown = false;
+    lzb::mpi::agree(g, [&] {
+      try {
+        app.parse(argc, argv);
+      } catch (const CLI::Success& e) {
+        if (g.root()) app.exit(e);
+        helpShown = true;
+      } catch (const CLI::ParseError& e) {
+        throw lzb::InputError(std::string(e.what()) + "\nRun 'lzb --help' for the options.");
+      }
+    });
+    if (helpShown) return 0;
     if (app.got_subcommand("render")) return runRender(render, g, commandLine);
-    if (app.got_subcommand("info")) return runInfo(info, g);
-    return runCompare(compare, g);
-  } catch (const lzb::InputError& e) {
-    if (g.root()) std::fprintf(stderr, "lzb: error: %s\n", e.what());
-    return 2;
+    // info and compare: work of each rank alone, printed by the root.
+    int status = 0;
+    lzb::mpi::agree(g, [&] {
+      status = app.got_subcommand("info") ? runInfo(info, g) : runCompare(compare, g);
+    });
+    return status;
+  } catch (const lzb::mpi::JobFailed& e) {
+    return e.status;  // every rank agreed; the root printed the messages
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "lzb: internal error on rank %d: %s\n", g.rank, e.what());
-    if (g.size > 1) MPI_Abort(g.comm, 1);
-    return 1;
+    // Outside an agreement (between collectives): end every rank now.
+    if (g.size > 1) lzb::mpi::abortJob(g, e);
+    std::fprintf(stderr, "lzb: %s\n", lzb::mpi::messageOf(e).c_str());
+    return lzb::mpi::statusOf(e);
   }
 }

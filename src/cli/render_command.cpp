@@ -2,9 +2,12 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <memory>
+
+#include <unistd.h>
 
 #include "mpi/composite.hpp"
+#include "mpi/failure.hpp"
 #include "mpi/frame_driver.hpp"
 #include "src/cli/methods.hpp"
 #include "src/cli/report.hpp"
@@ -62,24 +65,26 @@ void validate(const RenderArgs& a) {
   require(a.farPlane >= 0.0, "--far", "must be > 0");
 }
 
-// Creates the output folder and proves it writable before any work, so a bad --out costs nothing
-// and leaves nothing behind. Root only; the verdict is broadcast.
-void prepareOutput(const mpi::Group& g, const std::string& out) {
-  std::string problem;
-  if (g.root()) {
-    std::error_code ec;
-    fs::create_directories(out, ec);
-    if (ec) {
-      problem = "cannot create the folder: " + ec.message();
-    } else {
-      const fs::path probe = fs::path(out) / ".lzb-write-probe";
-      std::ofstream(probe) << "probe";
-      if (!fs::exists(probe)) problem = "the folder is not writable";
-      fs::remove(probe, ec);
-    }
-  }
-  problem = mpi::broadcastString(g, problem);
-  require(problem.empty(), "--out " + out, problem);
+// --out must name an existing writable folder or one that can be created; checked before any
+// work and without creating anything (a probe folder is made and removed in the nearest existing
+// ancestor), so bad input leaves nothing behind.
+void checkOutput(const std::string& out) {
+  fs::path existing = fs::absolute(out);
+  std::error_code ec;
+  while (!fs::exists(existing, ec) && existing.has_parent_path() && existing != existing.parent_path())
+    existing = existing.parent_path();
+  require(fs::is_directory(existing, ec), "--out " + out,
+          existing.string() + " is not a folder");
+  const fs::path probe = existing / (".lzb-write-probe." + std::to_string(::getpid()));
+  const bool created = fs::create_directory(probe, ec);
+  fs::remove(probe, ec);
+  require(created, "--out " + out, "cannot create a folder in " + existing.string());
+}
+
+void createOutput(const std::string& out) {
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  require(!ec, "--out " + out, "cannot create the folder: " + ec.message());
 }
 
 // The frame loop: every rank renders its share of each frame; the root writes images and records.
@@ -114,56 +119,65 @@ void renderFrames(const RenderArgs& a, const mpi::Group& g, const Scene& scene, 
 
 int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& commandLine) {
   Stopwatch total;
-  validate(a);
-  prepareOutput(g, a.out);
   const bool talk = g.root() && !a.quiet;
-
-  Stopwatch loadClock;
-  const Scene scene = loadScene(a.scene, !talk);
-  require(scene.expandedTriangles() > 0, a.scene, "the scene has no triangles");
-  const double loadSeconds = loadClock.seconds();
-
+  // Everything one rank can get wrong alone (options, files, memory) is agreed on before any
+  // rank writes anything or meets the others in a frame (mpi/failure.hpp).
+  Scene scene;
   RenderOptions options;
-  options.method = a.method;
-  options.threads = a.threads > 0 ? a.threads : coresOwned();
-  options.seed = a.seed;
-  options.quiet = !talk;
-  useThreads(options.threads);
+  int width = 0, height = 0;
+  CameraSpec base;
+  std::unique_ptr<Renderer> renderer, reference;
+  double loadSeconds = 0.0, setupSeconds = 0.0;
+  mpi::agree(g, [&] {
+    validate(a);
+    if (g.root()) checkOutput(a.out);
+  });
+  mpi::agree(g, [&] {
+    Stopwatch loadClock;
+    scene = loadScene(a.scene, !talk);
+    require(scene.expandedTriangles() > 0, a.scene, "the scene has no triangles");
+    loadSeconds = loadClock.seconds();
 
-  const int width = a.width ? a.width : scene.width.value_or(640);
-  const int height = a.height ? a.height : scene.height.value_or(480);
-  CameraSpec base = scene.camera ? *scene.camera : frameBounds(scene.bounds());
-  if (a.fov > 0.0) base.fovyDegrees = a.fov;
-  if (a.nearPlane > 0.0) base.nearPlane = a.nearPlane;
-  if (a.farPlane > 0.0) base.farPlane = a.farPlane;
-  // Validate the first camera before any rendering work starts.
-  Camera(withClipPlanes(base, scene.bounds()), width, height, "camera");
+    options.method = a.method;
+    options.threads = a.threads > 0 ? a.threads : coresOwned();
+    options.seed = a.seed;
+    options.quiet = !talk;
+    useThreads(options.threads);
 
-  Stopwatch setupClock;
-  auto renderer = methodNamed(a.method, "--method").create(scene, options);
-  std::unique_ptr<Renderer> reference;
-  if (!a.reference.empty()) reference = methodNamed(a.reference, "--reference").create(scene, options);
-  const double setupSeconds = setupClock.seconds();
+    width = a.width ? a.width : scene.width.value_or(640);
+    height = a.height ? a.height : scene.height.value_or(480);
+    base = scene.camera ? *scene.camera : frameBounds(scene.bounds());
+    if (a.fov > 0.0) base.fovyDegrees = a.fov;
+    if (a.nearPlane > 0.0) base.nearPlane = a.nearPlane;
+    if (a.farPlane > 0.0) base.farPlane = a.farPlane;
+    // Validate the first camera before any rendering work starts.
+    Camera(withClipPlanes(base, scene.bounds()), width, height, "camera");
 
+    Stopwatch setupClock;
+    renderer = methodNamed(a.method, "--method").create(scene, options);
+    if (!a.reference.empty()) reference = methodNamed(a.reference, "--reference").create(scene, options);
+    setupSeconds = setupClock.seconds();
+  });
   const nlohmann::json methodSetup = mpi::gatherStats(g, renderer->setupStats());
+  mpi::agree(g, [&] {
+    if (g.root()) createOutput(a.out);
+  });
 
   Report report(a, options, g, scene, commandLine);
   report.setMethod(*renderer, reference.get());
   report.setSetup(loadSeconds, setupSeconds, methodSetup);
-
   try {
     renderFrames(a, g, scene, base, width, height, *renderer, reference.get(), report, talk);
+    if (g.root()) {
+      report.setTotal(total.seconds());
+      report.write(fs::path(a.out) / "report.json");
+      report.printSummary(stdout);
+    }
   } catch (const std::exception& e) {
-    // Past this point an error may hit one rank only (say, a full disk at the root): the others
-    // would wait forever in the next collective, so a multi-rank run aborts them all.
+    // Ranks meet in collectives at every step of a frame: an error on one rank (say, a full disk
+    // at the root) would leave the others waiting, so a multi-rank run ends them all now.
     if (g.size == 1) throw;
-    std::fprintf(stderr, "lzb: error on rank %d: %s\n", g.rank, e.what());
-    MPI_Abort(g.comm, 2);
-  }
-  if (g.root()) {
-    report.setTotal(total.seconds());
-    report.write(fs::path(a.out) / "report.json");
-    report.printSummary(stdout);
+    mpi::abortJob(g, e);
   }
   return 0;
 }
