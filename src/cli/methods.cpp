@@ -1,5 +1,7 @@
 #include "src/cli/methods.hpp"
 
+#include <algorithm>
+
 #include "raycast/raycast_renderer.hpp"
 #include "src/core/error.hpp"
 #include "src/zbuffer/zbuffer_renderer.hpp"
@@ -44,7 +46,13 @@ const MethodPlugin& methodNamed(const std::string& name, const std::string& fiel
   throw InputError(field + ": unknown method '" + name + "' (known: " + known + ")");
 }
 
-void checkMethodName(const std::string& method, const std::string& field) { methodNamed(method, field); }
+void checkExactMethod(const std::string& method, const std::string& field) {
+  static const std::vector<std::string> exact = {"zbuffer", "raycast"};
+  if (std::find(exact.begin(), exact.end(), method) != exact.end()) return;
+  std::string known;
+  for (const std::string& m : exact) known += (known.empty() ? "" : ", ") + m;
+  throw InputError(field + ": '" + method + "' is not an exact method (exact: " + known + ")");
+}
 
 std::unique_ptr<Renderer> createRenderer(const std::string& method, const Scene& scene,
                                          const RenderOptions& options) {

@@ -11,8 +11,9 @@ namespace lzb {
 
 const std::vector<MethodPlugin>& methods();
 const MethodPlugin& methodNamed(const std::string& name, const std::string& field);
-// Throws InputError naming `field` when `method` is not a known method.
-void checkMethodName(const std::string& method, const std::string& field);
+// Throws InputError naming `field` when `method` is not an exact method (zbuffer, raycast: the
+// only ones a reference may be rendered with).
+void checkExactMethod(const std::string& method, const std::string& field);
 // Throws InputError naming --method for an unknown name.
 std::unique_ptr<Renderer> createRenderer(const std::string& method, const Scene& scene,
                                          const RenderOptions& options);

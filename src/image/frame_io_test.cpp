@@ -288,18 +288,25 @@ TEST_F(FrameIoTest, PlainFrameIsNotAReference) {
   }
 }
 
-TEST_F(FrameIoTest, CompareFilesOfOneFrameIsPerfect) {
-  writeFrame(sampleFrame(), dir_, 0);
+TEST_F(FrameIoTest, CompareFilesOfAFrameWithItsOwnReferenceIsCorrect) {
+  const Framebuffer fb = sampleFrame();
+  const ReferenceFrame ref = sampleReference(fb);
+  writeFrame(fb, dir_, 0, &ref);
   const fs::path exr = dir_ / "frame_0000.exr";
   const nlohmann::json j = compareFiles(exr, exr);
-  EXPECT_EQ(j.at("correct_pixel_rate"), 1.0);
-  EXPECT_EQ(j.at("rmse"), 0.0);
-  EXPECT_TRUE(j.at("psnr").is_null());
+  EXPECT_EQ(j.at("correct_rate_covered"), 1.0);
+  EXPECT_EQ(j.at("exact_id_rate_covered"), 1.0);
+  EXPECT_EQ(j.at("pixels"), fb.size());
+  // The colours are the frame's, not the box filter's: a finite PSNR.
+  EXPECT_GT(j.at("rmse_aa").get<double>(), 0.0);
+  EXPECT_FALSE(j.at("psnr_aa").is_null());
 }
 
 TEST_F(FrameIoTest, CompareFilesOfDifferentSizesNamesBoth) {
   writeFrame(sampleFrame(), dir_, 0);
-  writeFrame(Framebuffer(5, 5), dir_, 1);
+  const Framebuffer small(5, 5);
+  const ReferenceFrame smallRef = sampleReference(small);
+  writeFrame(small, dir_, 1, &smallRef);
   const fs::path a = dir_ / "frame_0000.exr", b = dir_ / "frame_0001.exr";
   try {
     compareFiles(a, b);
