@@ -46,8 +46,8 @@ void PrintTo(const ExactCase& c, std::ostream* os) { *os << c.scene; }
 class ExactReferencesAgree : public ::testing::TestWithParam<ExactCase> {};
 
 // zbuffer against the raycast reference: >= 99.5 % of covered pixels show a triangle the
-// reference sees in the pixel, >= 99 % the reference's centre triangle. (Not on sub-pixel
-// fields: there the 17 reference samples miss most visible triangles, src/image/README.md.)
+// reference sees in the pixel, >= 99 % the reference's centre triangle. (Sub-pixel fields are in
+// subpixel_test.cpp: there the 17 reference samples miss most visible triangles.)
 TEST_P(ExactReferencesAgree, OnAtLeast995PermilleOfCoveredPixels) {
   const ExactCase& c = GetParam();
   const std::string scene = sceneSpec(c.scene);
