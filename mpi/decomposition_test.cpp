@@ -52,7 +52,9 @@ TEST(Decomposition, ItemsByCostGoOnceInContiguousRunsOfAboutEqualCost) {
       for (size_t k = 0; k < mine.size(); ++k) {
         EXPECT_EQ(owner[mine[k]], -1);
         owner[mine[k]] = rank;
-        if (k) EXPECT_EQ(mine[k], mine[k - 1] + 1) << "contiguous";
+        if (k) {
+          EXPECT_EQ(mine[k], mine[k - 1] + 1) << "contiguous";
+        }
         cost += costs[mine[k]];
       }
       // A run is within one item's cost (at most 11) of its equal share.

@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# End-to-end checks of `lzb render --method lzb`: every stage against the z-buffer reference
-# (report.json accuracy >= 99.9 %), the report's LZB fields, and bad options (exit status 2,
-# a message naming the option, nothing written).
+# End-to-end checks of `lzb render --method lzb`: every stage against its exact reference
+# (report.json: >= 99.9 % of covered pixels correct and with the reference's centre ID), the
+# report's LZB fields, and bad options (exit status 2, a message naming the option, nothing
+# written). The reference is zbuffer, except for naive, whose far pixels are Embree's: against
+# zbuffer, frame 1 (the city from afar, 1181 covered pixels) scores 0.9949, exactly what
+# zbuffer scores against raycast there (the exact methods differ on sub-pixel geometry).
 # usage: lzb_cli_check.sh LZB_BINARY WORK_DIR
 set -euo pipefail
 lzb="$1" work="$2"
@@ -11,8 +14,10 @@ rm -rf "$work" && mkdir -p "$work"
 for run in naive lazy selective oor final final:gl:gl final:gl:native final:native:gl naive:gl; do
   IFS=: read -r stage near render <<<"$run"
   near="${near:-native}" render="${render:-native}" out="$work/${run//:/-}"
+  reference=zbuffer
+  [ "$stage" != naive ] || reference=raycast
   "$lzb" render "builtin:city?blocks=4" --method lzb --lzb-stage "$stage" --near-render "$near" \
-    --pvl-render "$render" --reference zbuffer --frames 2 --width 192 --height 144 --threads 2 \
+    --pvl-render "$render" --reference "$reference" --frames 2 --width 192 --height 144 --threads 2 \
     --quiet --out "$out" >/dev/null
   python3 - "$out/report.json" "$stage" "$near" "$render" <<'PY'
 import json, sys
@@ -23,7 +28,7 @@ if stage != "naive":
     assert report["method_parameters"]["pvl_render"] == render, report["method_parameters"]
 for f in report["frames"]:
     a = f["accuracy"]
-    assert a["correct_pixel_rate"] >= 0.999 and a["exact_id_rate"] >= 0.999, (stage, a)
+    assert a["correct_rate_covered"] >= 0.999 and a["exact_id_rate_covered"] >= 0.999, (stage, a)
     c, s = f["counts"], f["stages"]
     for key in ("plane_depth", "plane_reused", "near_triangles", "far_triangles",
                 "unfinished_pixels", "rays_cast"):
@@ -34,7 +39,8 @@ for f in report["frames"]:
         for key in ("octree_nodes_visited", "ray_triangle_tests", "pvl_size"):
             assert key in c, (stage, key)
         assert "pvl_find" in s and "pvl_render" in s, stage
-print("ok:", stage, near, render, [round(f["accuracy"]["exact_id_rate"], 5) for f in report["frames"]])
+print("ok:", stage, near, render, [(round(f["accuracy"]["correct_rate_covered"], 5),
+                                    round(f["accuracy"]["exact_id_rate_covered"], 5)) for f in report["frames"]])
 PY
 done
 

@@ -36,25 +36,30 @@ long missingFromPvl(const LzbRenderer& r, const EmbreeScene& embree, const Camer
   return missing;
 }
 
-// Every stage (and the given options) against the z-buffer on the listed frames of a 4-frame
-// path: >= 99.9 % correct pixels and exact IDs; every ray-cast pixel's exact hit in the PVL.
+// Every stage (and the given options) against its exact reference on the listed frames of a
+// 4-frame path: >= 99.9 % of covered pixels correct and with the exact centre ID; every ray-cast
+// pixel's exact hit in the PVL. The reference is the z-buffer, except for naive, whose far pixels
+// are Embree's: against the z-buffer it would measure the two exact methods' own disagreement on
+// sub-pixel geometry (zbuffer vs raycast: 0.995 of the far city's covered pixels).
 void expectMatchesZBuffer(const Scene& scene, int w, int h, std::initializer_list<int> frames,
                           std::vector<LzbStage> stages = {std::begin(kStages), std::end(kStages)},
                           LzbOptions base = {}) {
   ZBufferRenderer zbuffer(scene, testing::lzbRenderOptions());
+  RaycastRenderer raycast(scene, testing::lzbRenderOptions());
   const EmbreeScene embree(scene, {});
   for (LzbStage stage : stages) {
     LzbOptions o = base;
     o.stage = stage;
     LzbRenderer r(scene, testing::lzbRenderOptions(), o);
+    Renderer& exact = stage == LzbStage::kNaive ? static_cast<Renderer&>(raycast) : zbuffer;
     uint64_t cast = 0;
     for (int f : frames) {
       const Camera cam = pathFrame(scene, f, 4, w, h);
-      const Framebuffer ref = renderFrame(zbuffer, cam);
+      const ReferenceFrame ref = testing_util::renderReference(exact, cam);
       const Framebuffer img = renderFrame(r, cam);
       const Accuracy a = compare(img, ref);
-      EXPECT_GE(a.correctPixelRate, 0.999) << scene.source << " " << toString(stage) << " " << f;
-      EXPECT_GE(a.exactIdRate, 0.999) << scene.source << " " << toString(stage) << " " << f;
+      EXPECT_GE(a.correctRateCovered, 0.999) << scene.source << " " << toString(stage) << " " << f;
+      EXPECT_GE(a.exactIdRateCovered, 0.999) << scene.source << " " << toString(stage) << " " << f;
       const long missing = missingFromPvl(r, embree, cam);
       if (missing >= 0) {
         EXPECT_EQ(missing, 0) << scene.source << " " << toString(stage) << " " << f;
@@ -152,7 +157,9 @@ TEST(LzbRenderer, NativeAndGlZBuffersAgree) {
     }
     EXPECT_GT(same, 0) << f;
     EXPECT_LE(differ, long(a.size() / 1000)) << f;
-    EXPECT_GE(compare(a, b).exactIdRate, 0.999) << f;
+    long imageDiffer = 0;
+    for (size_t i = 0; i < a.size(); ++i) imageDiffer += a.id[i] != b.id[i];
+    EXPECT_LE(imageDiffer, long(a.size() / 1000)) << f;
   }
   EXPECT_GT(nearCovered, size_t(3 * 192 * 144 / 10)) << "too little near scene compared";
 }
@@ -181,8 +188,8 @@ TEST(LzbRenderer, StaticOccluderSettingsStayExact) {
       ZBufferRenderer zbuffer(scene, testing::lzbRenderOptions());
       LzbRenderer r(scene, testing::lzbRenderOptions(), o);
       const Camera cam = pathFrame(scene, 0, 4, 128, 96);
-      const Accuracy a = compare(renderFrame(r, cam), renderFrame(zbuffer, cam));
-      EXPECT_GE(a.exactIdRate, 0.999) << toString(mode) << " K=" << k;
+      const Accuracy a = compare(renderFrame(r, cam), testing_util::renderReference(zbuffer, cam));
+      EXPECT_GE(a.exactIdRateCovered, 0.999) << toString(mode) << " K=" << k;
     }
 }
 
@@ -199,7 +206,7 @@ TEST(LzbRenderer, PlaneInFrontOfEverything) {
   EXPECT_EQ(r.lastFrame().nearPass.size(), img.size());
   EXPECT_EQ(r.lastFrame().nearPass.coveredCount(), 0u);
   EXPECT_EQ(stats.shared.value("unfinished_pixels", 0.0), 128.0 * 96.0);
-  EXPECT_GE(compare(img, renderFrame(zbuffer, cam)).exactIdRate, 0.999);
+  EXPECT_GE(compare(img, testing_util::renderReference(zbuffer, cam)).exactIdRateCovered, 0.999);
 }
 
 TEST(LzbRenderer, PlaneBehindEverythingLeavesAnEmptyFarScene) {
@@ -263,6 +270,7 @@ TEST(LzbRenderer, RaysParallelToOctreePlanes) {
   RaycastRenderer raycast(scene, testing::lzbRenderOptions());
   const EmbreeScene embree(scene, {});
   const Framebuffer ref = renderFrame(zbuffer, cam);
+  const ReferenceFrame exact = reduceReference(ref, renderFrame(zbuffer, subsampleCamera(cam)));
   const Framebuffer rays = renderFrame(raycast, cam);
   for (LzbStage stage : kStages) {
     LzbOptions o = stageOptions(stage);
@@ -275,7 +283,7 @@ TEST(LzbRenderer, RaysParallelToOctreePlanes) {
       EXPECT_EQ(img.id, rays.id);
       continue;
     }
-    EXPECT_GE(compare(img, ref).exactIdRate, 0.999) << toString(stage);
+    EXPECT_GE(compare(img, exact).exactIdRateCovered, 0.999) << toString(stage);
     for (int y = 0; y < cam.height(); ++y)
       EXPECT_EQ(img.id[img.index(50, y)], ref.id[ref.index(50, y)]) << toString(stage) << " " << y;
     const long missing = missingFromPvl(r, embree, cam);

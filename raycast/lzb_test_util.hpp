@@ -1,6 +1,7 @@
 #pragma once
 // Scenes and helpers for the LZB renderer tests: small versions of the benchmark scenes (a city,
-// instanced scenes, a real scanned mesh), rendering one frame, accuracy against the z-buffer.
+// instanced scenes, a real scanned mesh), rendering one frame, accuracy against the z-buffer
+// (testing_util::renderReference).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -9,6 +10,7 @@
 
 #include "raycast/lzb_renderer.hpp"
 #include "src/image/metrics.hpp"
+#include "src/image/test_reference.hpp"
 #include "src/scene/load.hpp"
 #include "src/zbuffer/zbuffer_renderer.hpp"
 

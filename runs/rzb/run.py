@@ -136,9 +136,9 @@ def vs_zbuffer():
         for j in rows:
             j["speedup"] = j["zbuffer_s"] / j["frame_s"]
             print(f"{scene} cache={j['cache']!s:5s}: rzb {j['frame_s']:.3f} s, zbuffer {j['zbuffer_s']:.3f} s "
-                  f"(x{j['speedup']:.1f}), correct {j['correct_3x3']:.4f}", flush=True)
+                  f"(x{j['speedup']:.1f}), correct {j['correct_rate_covered']:.4f}", flush=True)
         write_csv("vs_zbuffer.csv", rows, ["scene", "triangles", "d", "cache", "frame_s", "first_frame_s",
-                                           "zbuffer_s", "speedup", "correct_3x3", "psnr", "samples",
+                                           "zbuffer_s", "speedup", "correct_rate_covered", "psnr_aa", "samples",
                                            "fallback_triangles", "setup_s"],
                   "rzb and zbuffer render the same view in one process; cache: best warm frame")
 
@@ -182,9 +182,9 @@ def table1():
                 j["name"] = name
                 rows.append(j)
                 print(f"{name:16s} d={j['d']} cache={j['cache']!s:5s} {j['frame_s']:.3f} s "
-                      f"(zbuffer {j['zbuffer_s']:.3f} s) correct {j.get('correct_3x3', float('nan')):.4f}", flush=True)
+                      f"(zbuffer {j['zbuffer_s']:.3f} s) correct {j.get('correct_rate_covered', float('nan')):.4f}", flush=True)
         write_csv("table1.csv", rows, ["name", "scene", "triangles", "d", "cache", "frame_s", "first_frame_s",
-                                       "zbuffer_s", "correct_3x3", "psnr", "samples", "fallback_triangles",
+                                       "zbuffer_s", "correct_rate_covered", "psnr_aa", "samples", "fallback_triangles",
                                        "setup_s", "tree_bytes"],
                   "frame_s: new sample set (cache off) or best warm frame of the same view (cache on)")
 

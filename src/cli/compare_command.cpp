@@ -8,7 +8,9 @@ namespace lzb {
 
 void addCompareOptions(CLI::App& c, CompareArgs& a) {
   c.add_option("image", a.test, "EXR written by lzb render (the image to judge)")->required();
-  c.add_option("reference", a.reference, "EXR of the exact reference")->required();
+  c.add_option("reference", a.reference,
+               "EXR of the exact reference, rendered with `lzb render --subsamples`")
+      ->required();
 }
 
 int runCompare(const CompareArgs& a, const mpi::Group& g) {

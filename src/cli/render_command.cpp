@@ -18,6 +18,7 @@
 #include "src/core/timer.hpp"
 #include "src/image/frame_io.hpp"
 #include "src/image/metrics.hpp"
+#include "src/image/reference.hpp"
 #include "src/scene/load.hpp"
 
 namespace lzb {
@@ -30,7 +31,14 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
       ->required();
   c.add_option("--method,-m", a.method, "rendering method: " + methodNames())->capture_default_str();
   c.add_option("--reference", a.reference,
-               "also render this exact method and report accuracy against it: " + methodNames(true));
+               "also render this exact method, at the pixel centres and at 4x4 sub-samples per "
+               "pixel, and report accuracy against it (a pixel is correct when its triangle is "
+               "one the reference sees at the pixel's centre or one of its 16 sub-samples; "
+               "src/image/README.md): " + methodNames(true) + "; width and height at most 4096");
+  c.add_flag("--subsamples", a.subsamples,
+             "also render each frame at 4x4 sub-samples per pixel and store their triangle IDs "
+             "and box-filtered colour in the EXR, making it a reference for `lzb compare` "
+             "(exact methods only; width and height at most 4096)");
   c.add_option("--out,-o", a.out, "output folder for frame_NNNN.png/.exr and report.json")
       ->capture_default_str();
   c.add_option("--threads,-t", a.threads, "threads per rank (0: the cores this rank owns)")
@@ -55,9 +63,18 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
 
 namespace {
 
+// Refuses sub-sample images over the camera's size limit (4W x 4H), naming the option that asks
+// for them. A size of 0 (not given: the scene file's or the default) passes here.
+void checkSubsampleSizes(const RenderArgs& a, int width, int height) {
+  if (!a.reference.empty()) checkSubsampleSize(width, height, "--reference");
+  if (a.subsamples) checkSubsampleSize(width, height, "--subsamples");
+}
+
 void validate(const RenderArgs& a) {
   methodNamed(a.method, "--method").validate();
   if (!a.reference.empty()) exactMethodNamed(a.reference, "--reference");
+  if (a.subsamples) exactMethodNamed(a.method, "--subsamples");
+  checkSubsampleSizes(a, a.width, a.height);
   require(a.threads >= 0 && a.threads <= 1024, "--threads", "must be in [0, 1024]");
   require(a.frames >= 1 && a.frames <= 1000000, "--frames", "must be in [1, 1000000]");
   require(a.fov >= 0.0 && a.fov < 180.0, "--fov", "must be in (0, 180) degrees");
@@ -87,6 +104,32 @@ void createOutput(const std::string& out) {
   require(!ec, "--out " + out, "cannot create the folder: " + ec.message());
 }
 
+// Renders `exact` at the 4x4 sub-samples of `camera` (every rank its share) and reduces them with
+// its centre render `centres` at the root; elsewhere returns an empty frame. The 4W x 4H image
+// (16 bytes per sub-sample) is freed on return.
+ReferenceFrame renderSubsamples(const mpi::Group& g, Renderer& exact, const Camera& camera,
+                                int f, const Framebuffer& centres, double& seconds) {
+  Framebuffer fine;
+  const nlohmann::json stats = mpi::renderFrame(g, exact, subsampleCamera(camera), f, fine);
+  if (!g.root()) return {};
+  seconds = stats["seconds"].get<double>();
+  return reduceReference(centres, fine);
+}
+
+// Renders the reference of frame f (centres, then sub-samples) and adds the test image's
+// accuracy against it to the frame's entry at the root.
+void addAccuracy(const mpi::Group& g, Renderer& reference, const Camera& camera, int f,
+                 const Framebuffer& image, nlohmann::json& frame) {
+  Framebuffer centres;
+  const nlohmann::json stats = mpi::renderFrame(g, reference, camera, f, centres);
+  double subsampleSeconds = 0.0;
+  const ReferenceFrame exact = renderSubsamples(g, reference, camera, f, centres, subsampleSeconds);
+  if (!g.root()) return;
+  frame["accuracy"] = toJson(compare(image, exact));
+  frame["reference_seconds"] = stats["seconds"];
+  frame["reference_subsample_seconds"] = subsampleSeconds;
+}
+
 // The frame loop: every rank renders its share of each frame; the root writes images and records.
 void renderFrames(const RenderArgs& a, const mpi::Group& g, const Scene& scene, const CameraSpec& base,
                   int width, int height, Renderer& renderer, Renderer* reference, Report& report,
@@ -98,16 +141,15 @@ void renderFrames(const RenderArgs& a, const mpi::Group& g, const Scene& scene, 
     const Camera camera(spec, width, height, "camera (frame " + std::to_string(f) + ")");
     Framebuffer image;
     nlohmann::json frame = mpi::renderFrame(g, renderer, camera, f, image);
-    if (reference) {
-      Framebuffer exact;
-      nlohmann::json ref = mpi::renderFrame(g, *reference, camera, f, exact);
-      if (g.root()) {
-        frame["accuracy"] = toJson(compare(image, exact));
-        frame["reference_seconds"] = ref["seconds"];
-      }
+    ReferenceFrame own;  // this frame's own sub-samples, with --subsamples
+    if (a.subsamples) {
+      double seconds = 0.0;
+      own = renderSubsamples(g, renderer, camera, f, image, seconds);
+      if (g.root()) frame["subsample_seconds"] = seconds;
     }
+    if (reference) addAccuracy(g, *reference, camera, f, image, frame);
     if (g.root()) {
-      writeFrame(image, a.out, f);
+      writeFrame(image, a.out, f, a.subsamples ? &own : nullptr);
       report.addFrame(f, camera, frame, image);
     }
     progress.add();
@@ -150,8 +192,9 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
     if (a.fov > 0.0) base.fovyDegrees = a.fov;
     if (a.nearPlane > 0.0) base.nearPlane = a.nearPlane;
     if (a.farPlane > 0.0) base.farPlane = a.farPlane;
-    // Validate the first camera before any rendering work starts.
+    // Validate the first camera and the sub-sample size before any rendering work starts.
     Camera(withClipPlanes(base, scene.bounds()), width, height, "camera");
+    checkSubsampleSizes(a, width, height);
 
     Stopwatch setupClock;
     renderer = methodNamed(a.method, "--method").create(scene, options);

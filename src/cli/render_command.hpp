@@ -14,6 +14,7 @@ struct RenderArgs {
   std::string scene;
   std::string method = "zbuffer";
   std::string reference;  // empty: none
+  bool subsamples = false;  // store the 4x4 sub-sample IDs and box colour in each EXR
   std::string out = "out";
   int threads = 0;  // 0: the cores this rank owns
   uint64_t seed = 1;

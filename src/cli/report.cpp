@@ -43,6 +43,7 @@ Report::Report(const RenderArgs& a, const RenderOptions& options, const mpi::Gro
             {{"seed", a.seed},
              {"frames", a.frames},
              {"reference", a.reference.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.reference)},
+             {"subsamples", a.subsamples},
              {"fov", a.fov},
              {"near", a.nearPlane},
              {"far", a.farPlane}}},
@@ -86,7 +87,7 @@ void Report::setTotal(double seconds) {
     times.push_back(f["seconds"].get<double>());
     if (f.contains("accuracy")) {
       haveAccuracy = true;
-      rate = std::min(rate, f["accuracy"]["correct_pixel_rate"].get<double>());
+      rate = std::min(rate, f["accuracy"]["correct_rate_covered"].get<double>());
     }
   }
   double mean = 0.0;
@@ -95,7 +96,7 @@ void Report::setTotal(double seconds) {
                       {"mean_frame_seconds", mean},
                       {"median_frame_seconds", median(times)},
                       {"peak_memory_bytes_root", peakMemoryBytes()}};
-  if (haveAccuracy) json_["summary"]["min_correct_pixel_rate"] = rate;
+  if (haveAccuracy) json_["summary"]["min_correct_rate_covered"] = rate;
 }
 
 void Report::write(const std::filesystem::path& path) const {
@@ -114,10 +115,10 @@ void Report::printSummary(std::FILE* out) const {
                (unsigned long long)json_["scene"]["triangles_expanded"].get<uint64_t>());
   std::fprintf(out, "  frame time: %.4f s median over %zu frame(s)\n",
                s["median_frame_seconds"].get<double>(), frames);
-  if (s.contains("min_correct_pixel_rate"))
-    std::fprintf(out, "  accuracy vs %s: correct-pixel rate >= %.5f\n",
+  if (s.contains("min_correct_rate_covered"))
+    std::fprintf(out, "  accuracy vs %s: correct (covered pixels) >= %.5f\n",
                  json_["parameters"]["reference"].get<std::string>().c_str(),
-                 s["min_correct_pixel_rate"].get<double>());
+                 s["min_correct_rate_covered"].get<double>());
   const std::string dir = std::filesystem::absolute(out_).string();
   std::fprintf(out, "  images: %s/frame_%04d.png (.exr)%s\n", dir.c_str(), 0,
                frames > 1 ? " ..." : "");

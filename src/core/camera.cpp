@@ -12,7 +12,6 @@ namespace lzb {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr int kMaxImageSide = 16384;
 
 bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 

@@ -19,6 +19,9 @@
 
 namespace lzb {
 
+// The largest image side a Camera accepts.
+inline constexpr int kMaxImageSide = 16384;
+
 struct Plane {
   glm::dvec3 n;  // points into the inside
   double d;      // inside when dot(n, p) + d >= 0

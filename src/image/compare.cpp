@@ -9,7 +9,7 @@ namespace lzb {
 nlohmann::json compareFiles(const std::filesystem::path& test,
                             const std::filesystem::path& reference) {
   const Framebuffer a = readFrameExr(test);
-  const Framebuffer b = readFrameExr(reference);
+  const ReferenceFrame b = readReferenceExr(reference);
   try {
     return toJson(compare(a, b));
   } catch (const InputError& e) {

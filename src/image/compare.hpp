@@ -5,8 +5,10 @@
 
 namespace lzb {
 
-// Reads two EXRs written by writeFrame and returns toJson(compare(test, reference)) (see
-// metrics.hpp). Throws InputError naming the file(s) on a bad file or a size mismatch.
+// Reads the frame `test` and the reference frame `reference` (an EXR with the sub-sample
+// channels: `lzb render --subsamples`) and returns toJson(compare(test, reference)) (see
+// metrics.hpp). Throws InputError naming the file(s) on a bad file, a reference without the
+// sub-sample channels, or a size mismatch.
 nlohmann::json compareFiles(const std::filesystem::path& test,
                             const std::filesystem::path& reference);
 

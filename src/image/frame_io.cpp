@@ -3,6 +3,7 @@
 #include <OpenImageIO/half.h>
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -21,13 +22,28 @@ using OIIO::ImageOutput;
 using OIIO::ImageSpec;
 using OIIO::TypeDesc;
 
-// One EXR pixel in its native (per-channel) layout, packed as OIIO expects it.
-struct ExrPixel {
-  Imath::half r, g, b, a;
-  float z;
-  uint32_t idLow, idHigh;
+// Rows moved per OIIO call: a few zip blocks of 16 lines, so large frames never sit whole in
+// the native (up to 160 bytes per pixel) layout.
+constexpr int kRowsPerBlock = 64;
+
+struct ExrChannel {
+  std::string name;
+  TypeDesc type;
 };
-static_assert(sizeof(ExrPixel) == 20, "EXR pixel must be packed without padding");
+
+std::vector<ExrChannel> frameChannels(bool withSubsamples) {
+  std::vector<ExrChannel> c = {{"R", TypeDesc::HALF},   {"G", TypeDesc::HALF},
+                               {"B", TypeDesc::HALF},   {"A", TypeDesc::HALF},
+                               {"Z", TypeDesc::FLOAT},  {kIdLowChannel, TypeDesc::UINT32},
+                               {kIdHighChannel, TypeDesc::UINT32}};
+  if (!withSubsamples) return c;
+  for (int k = 0; k < kSubsamples; ++k) {
+    c.push_back({subsampleIdLowChannel(k), TypeDesc::UINT32});
+    c.push_back({subsampleIdHighChannel(k), TypeDesc::UINT32});
+  }
+  for (const char* name : kBoxColorChannels) c.push_back({name, TypeDesc::FLOAT});
+  return c;
+}
 
 [[noreturn]] void fail(const std::filesystem::path& path, const std::string& what) {
   throw InputError(path.string() + ": " + what);
@@ -40,13 +56,68 @@ std::string oiioError(const std::string& objectError) {
   return global.empty() ? "unknown OpenImageIO error" : global;
 }
 
-// Opens `tmp` (named like `path`) for writing, writes `pixels` in `format` and closes it.
+// Appends pixel values in the EXR's native per-channel layout.
+class RowPacker {
+ public:
+  explicit RowPacker(std::vector<unsigned char>& bytes) : bytes_(bytes) { bytes_.clear(); }
+  template <typename T>
+  void put(T value) {
+    const size_t at = bytes_.size();
+    bytes_.resize(at + sizeof(T));
+    std::memcpy(bytes_.data() + at, &value, sizeof(T));
+  }
+  void putId(uint64_t id) {
+    put(uint32_t(id));
+    put(uint32_t(id >> 32));
+  }
+
+ private:
+  std::vector<unsigned char>& bytes_;
+};
+
+float byteToUnit(uint8_t v) {
+  return float(v) / 255.0f;
+}
+
+uint8_t unitToByteExact(float v) {
+  if (!(v >= 0.0f)) return 0;  // also NaN
+  if (v >= 1.0f) return 255;
+  return uint8_t(std::lround(v * 255.0f));
+}
+
+// Box colours are means of 16 bytes: back to the nearest 1/16 of a byte unit.
+float unitToBoxMean(float v) {
+  const float sixteenths = std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f * float(kSubsamples));
+  return sixteenths / float(kSubsamples);
+}
+
+// Pixel i of fb (and of the sub-sample data, when given) in frameChannels' order.
+void packPixel(const Framebuffer& fb, const ReferenceFrame* sub, size_t i, RowPacker& row) {
+  const Rgba8 c = fb.color[i];
+  for (int k = 0; k < 4; ++k) row.put(Imath::half(byteToUnit(channel(c, k))));
+  row.put(fb.depth[i]);
+  row.putId(fb.id[i]);
+  if (!sub) return;
+  const uint64_t* ids = sub->subsamples(i);
+  for (int k = 0; k < kSubsamples; ++k) row.putId(ids[k]);
+  for (float mean : sub->boxColor[i]) row.put(mean / 255.0f);
+}
+
+// Writes the image to `tmp` (named like `path`) in blocks of rows filled by `fill`.
 void writeImage(const std::filesystem::path& path, const std::filesystem::path& tmp,
-                const ImageSpec& spec, TypeDesc format, const void* pixels) {
+                const ImageSpec& spec,
+                const std::function<void(int y0, int y1, std::vector<unsigned char>&)>& fill) {
   auto out = ImageOutput::create(tmp.string());
   if (!out) fail(path, oiioError(""));
   if (!out->open(tmp.string(), spec)) fail(path, oiioError(out->geterror()));
-  const bool written = out->write_image(format, pixels);
+  std::vector<unsigned char> block;
+  bool written = true;
+  for (int y0 = 0; y0 < spec.height && written; y0 += kRowsPerBlock) {
+    const int y1 = std::min(y0 + kRowsPerBlock, spec.height);
+    fill(y0, y1, block);
+    // TypeUnknown: the buffer is in the spec's native per-channel formats.
+    written = out->write_scanlines(y0, y1, 0, TypeDesc::UNKNOWN, block.data());
+  }
   const bool closed = out->close();
   if (!written || !closed) fail(path, oiioError(out->geterror()));
 }
@@ -61,38 +132,68 @@ void writeFileAtomically(const std::filesystem::path& path,
   }
 }
 
-float byteToUnit(uint8_t v) {
-  return float(v) / 255.0f;
-}
-
-uint8_t unitToByteExact(float v) {
-  if (!(v >= 0.0f)) return 0;  // also NaN
-  if (v >= 1.0f) return 255;
-  return uint8_t(std::lround(v * 255.0f));
-}
-
-int findChannel(const ImageSpec& spec, const std::filesystem::path& path, const char* name) {
+int channelIndex(const ImageSpec& spec, const std::string& name) {
   for (int c = 0; c < spec.nchannels; ++c)
     if (spec.channelnames[size_t(c)] == name) return c;
-  fail(path, std::string("missing channel \"") + name + "\"");
+  return -1;
 }
 
-// Reads channel `c` of the native pixel buffer as float (half or float channels).
-class ChannelReader {
+int findChannel(const ImageSpec& spec, const std::filesystem::path& path, const std::string& name) {
+  const int c = channelIndex(spec, name);
+  if (c < 0) fail(path, "missing channel \"" + name + "\"");
+  return c;
+}
+
+// An EXR open for reading in blocks of rows, each in the native per-channel layout.
+class ExrReader {
  public:
-  ChannelReader(const ImageSpec& spec, const std::vector<unsigned char>& pixels, size_t pixelBytes)
-      : spec_(spec), pixels_(pixels), pixelBytes_(pixelBytes) {
-    offsets_.resize(size_t(spec.nchannels));
+  explicit ExrReader(const std::filesystem::path& path) : path_(path) {
+    in_ = ImageInput::open(path.string());
+    if (!in_) fail(path, oiioError(""));
+    spec_ = in_->spec();
+    if (spec_.deep || spec_.depth != 1) fail(path, "not a flat 2-D image");
+    if (spec_.width <= 0 || spec_.height <= 0) fail(path, "empty image");
+    pixelBytes_ = spec_.pixel_bytes(true);
     size_t offset = 0;
-    for (int c = 0; c < spec.nchannels; ++c) {
-      offsets_[size_t(c)] = offset;
-      offset += spec.channelformat(c).size();
+    for (int c = 0; c < spec_.nchannels; ++c) {
+      offsets_.push_back(offset);
+      offset += spec_.channelformat(c).size();
     }
   }
-  TypeDesc format(int c) const { return spec_.channelformat(c); }
+  const ImageSpec& spec() const { return spec_; }
+
+  // Finds channels by name (all before any type check: a missing channel is the likelier news)
+  // and checks their types: uint32 IDs, half or float otherwise.
+  std::vector<int> channels(const std::vector<std::string>& names, bool isUint) const {
+    std::vector<int> found;
+    for (const std::string& name : names) found.push_back(findChannel(spec_, path_, name));
+    for (size_t k = 0; k < names.size(); ++k) {
+      const TypeDesc f = spec_.channelformat(found[k]);
+      const bool ok =
+          isUint ? f == TypeDesc::UINT32 : (f == TypeDesc::HALF || f == TypeDesc::FLOAT);
+      if (!ok)
+        fail(path_, "channel \"" + names[k] + "\" has type " + f.c_str() + ", expected " +
+                        (isUint ? "uint" : "half or float"));
+    }
+    return found;
+  }
+
+  // Calls visit(pixel index) for every pixel, block by block, with the block loaded.
+  void forEachPixel(const std::function<void(size_t)>& visit) {
+    const size_t width = size_t(spec_.width);
+    for (int y0 = 0; y0 < spec_.height; y0 += kRowsPerBlock) {
+      const int y1 = std::min(y0 + kRowsPerBlock, spec_.height);
+      block_.resize(size_t(y1 - y0) * width * pixelBytes_);
+      if (!in_->read_scanlines(0, 0, y0, y1, 0, 0, spec_.nchannels, TypeDesc::UNKNOWN,
+                               block_.data()))
+        fail(path_, oiioError(in_->geterror()));
+      blockStart_ = size_t(y0) * width;
+      for (size_t i = blockStart_; i < size_t(y1) * width; ++i) visit(i);
+    }
+  }
   float asFloat(int c, size_t i) const {
-    const unsigned char* p = pixels_.data() + i * pixelBytes_ + offsets_[size_t(c)];
-    if (format(c) == TypeDesc::HALF) {
+    const unsigned char* p = at(c, i);
+    if (spec_.channelformat(c) == TypeDesc::HALF) {
       Imath::half h;
       std::memcpy(&h, p, sizeof(h));
       return float(h);
@@ -101,29 +202,58 @@ class ChannelReader {
     std::memcpy(&f, p, sizeof(f));
     return f;
   }
-  uint32_t asUint(int c, size_t i) const {
-    uint32_t u;
-    std::memcpy(&u, pixels_.data() + i * pixelBytes_ + offsets_[size_t(c)], sizeof(u));
-    return u;
+  uint64_t asId(int low, int high, size_t i) const {
+    uint32_t lo, hi;
+    std::memcpy(&lo, at(low, i), sizeof(lo));
+    std::memcpy(&hi, at(high, i), sizeof(hi));
+    return uint64_t(hi) << 32 | lo;
   }
 
  private:
-  const ImageSpec& spec_;
-  const std::vector<unsigned char>& pixels_;
-  size_t pixelBytes_;
+  const unsigned char* at(int c, size_t i) const {
+    return block_.data() + (i - blockStart_) * pixelBytes_ + offsets_[size_t(c)];
+  }
+  std::filesystem::path path_;
+  std::unique_ptr<ImageInput> in_;
+  ImageSpec spec_;
+  size_t pixelBytes_ = 0, blockStart_ = 0;
   std::vector<size_t> offsets_;
+  std::vector<unsigned char> block_;
 };
 
-void requireFormat(const ChannelReader& reader, int c, const std::filesystem::path& path,
-                   const char* name, bool isUint) {
-  const TypeDesc f = reader.format(c);
-  const bool ok = isUint ? f == TypeDesc::UINT32 : (f == TypeDesc::HALF || f == TypeDesc::FLOAT);
-  if (!ok)
-    fail(path, std::string("channel \"") + name + "\" has type " + f.c_str() + ", expected " +
-                   (isUint ? "uint" : "half or float"));
+void writeExrChannels(const Framebuffer& fb, const ReferenceFrame* sub,
+                      const std::filesystem::path& path) {
+  const std::vector<ExrChannel> channels = frameChannels(sub != nullptr);
+  ImageSpec spec(fb.width, fb.height, int(channels.size()), TypeDesc::HALF);
+  spec.channelnames.clear();
+  spec.channelformats.clear();
+  for (const ExrChannel& c : channels) {
+    spec.channelnames.push_back(c.name);
+    spec.channelformats.push_back(c.type);
+  }
+  spec.alpha_channel = 3;
+  spec.z_channel = 4;
+  spec.attribute("compression", "zip");
+  // No capture date: identical frames must give identical files (the 2-rank test compares bytes).
+  spec.attribute("DateTime", "");
+  const auto fill = [&](int y0, int y1, std::vector<unsigned char>& block) {
+    RowPacker row(block);
+    for (size_t i = fb.index(0, y0); i < fb.index(0, y1); ++i) packPixel(fb, sub, i, row);
+  };
+  writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
+    writeImage(path, tmp, spec, fill);
+  });
 }
 
 }  // namespace
+
+std::string subsampleIdLowChannel(int k) {
+  return "sub.ID." + std::to_string(k);
+}
+
+std::string subsampleIdHighChannel(int k) {
+  return "sub.ID.hi." + std::to_string(k);
+}
 
 std::string frameStem(int frame) {
   char buf[32];
@@ -132,30 +262,14 @@ std::string frameStem(int frame) {
 }
 
 void writeExr(const Framebuffer& fb, const std::filesystem::path& path) {
-  ImageSpec spec(fb.width, fb.height, 7, TypeDesc::HALF);
-  spec.channelnames = {"R", "G", "B", "A", "Z", kIdLowChannel, kIdHighChannel};
-  spec.channelformats = {TypeDesc::HALF,  TypeDesc::HALF,   TypeDesc::HALF,  TypeDesc::HALF,
-                         TypeDesc::FLOAT, TypeDesc::UINT32, TypeDesc::UINT32};
-  spec.alpha_channel = 3;
-  spec.z_channel = 4;
-  spec.attribute("compression", "zip");
-  // No capture date: identical frames must give identical files (the 2-rank test compares bytes).
-  spec.attribute("DateTime", "");
-  std::vector<ExrPixel> pixels(fb.size());
-  for (size_t i = 0; i < fb.size(); ++i) {
-    const Rgba8 c = fb.color[i];
-    pixels[i] = {Imath::half(byteToUnit(channel(c, 0))),
-                 Imath::half(byteToUnit(channel(c, 1))),
-                 Imath::half(byteToUnit(channel(c, 2))),
-                 Imath::half(byteToUnit(channel(c, 3))),
-                 fb.depth[i],
-                 uint32_t(fb.id[i]),
-                 uint32_t(fb.id[i] >> 32)};
-  }
-  writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
-    // TypeUnknown: the buffer is in the spec's native per-channel formats.
-    writeImage(path, tmp, spec, TypeDesc::UNKNOWN, pixels.data());
-  });
+  writeExrChannels(fb, nullptr, path);
+}
+
+void writeExr(const Framebuffer& fb, const ReferenceFrame& subsamples,
+              const std::filesystem::path& path) {
+  require(subsamples.width == fb.width && subsamples.height == fb.height, path.string(),
+          "the sub-sample data's size differs from the frame's");
+  writeExrChannels(fb, &subsamples, path);
 }
 
 void writePng(const Framebuffer& fb, const std::filesystem::path& path) {
@@ -163,50 +277,68 @@ void writePng(const Framebuffer& fb, const std::filesystem::path& path) {
   spec.alpha_channel = 3;
   // Our colour is not premultiplied: keep OIIO from dividing it by alpha on the way out.
   spec.attribute("oiio:UnassociatedAlpha", 1);
-  std::vector<uint8_t> bytes(4 * fb.size());
-  for (size_t i = 0; i < fb.size(); ++i)
-    for (int k = 0; k < 4; ++k) bytes[4 * i + size_t(k)] = channel(fb.color[i], k);
+  const auto fill = [&](int y0, int y1, std::vector<unsigned char>& block) {
+    block.clear();
+    for (size_t i = fb.index(0, y0); i < fb.index(0, y1); ++i)
+      for (int k = 0; k < 4; ++k) block.push_back(channel(fb.color[i], k));
+  };
   writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
-    writeImage(path, tmp, spec, TypeDesc::UINT8, bytes.data());
+    writeImage(path, tmp, spec, fill);
   });
 }
 
-void writeFrame(const Framebuffer& fb, const std::filesystem::path& dir, int frame) {
+void writeFrame(const Framebuffer& fb, const std::filesystem::path& dir, int frame,
+                const ReferenceFrame* subsamples) {
   require(fb.width > 0 && fb.height > 0, dir.string(), "cannot write an empty frame");
   require(frame >= 0, dir.string(), "frame number " + std::to_string(frame) + " is negative");
   const std::string stem = frameStem(frame);
-  writeExr(fb, dir / (stem + ".exr"));
+  if (subsamples) {
+    writeExr(fb, *subsamples, dir / (stem + ".exr"));
+  } else {
+    writeExr(fb, dir / (stem + ".exr"));
+  }
   writePng(fb, dir / (stem + ".png"));
 }
 
 Framebuffer readFrameExr(const std::filesystem::path& path) {
-  auto in = ImageInput::open(path.string());
-  if (!in) fail(path, oiioError(""));
-  const ImageSpec spec = in->spec();
-  if (spec.deep || spec.depth != 1) fail(path, "not a flat 2-D image");
-  if (spec.width <= 0 || spec.height <= 0) fail(path, "empty image");
-  const char* names[] = {"R", "G", "B", "A", "Z", kIdLowChannel, kIdHighChannel};
-  int ch[7];
-  for (int k = 0; k < 7; ++k) ch[k] = findChannel(spec, path, names[k]);
+  ExrReader in(path);
+  const std::vector<int> colour = in.channels({"R", "G", "B", "A", "Z"}, false);
+  const std::vector<int> id = in.channels({kIdLowChannel, kIdHighChannel}, true);
 
-  const size_t pixelBytes = spec.pixel_bytes(true);
-  std::vector<unsigned char> pixels(size_t(spec.width) * size_t(spec.height) * pixelBytes);
-  if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::UNKNOWN, pixels.data()))
-    fail(path, oiioError(in->geterror()));
-  in->close();
-
-  ChannelReader reader(spec, pixels, pixelBytes);
-  for (int k = 0; k < 7; ++k) requireFormat(reader, ch[k], path, names[k], k >= 5);
-
-  Framebuffer fb(spec.width, spec.height);
-  for (size_t i = 0; i < fb.size(); ++i) {
-    fb.color[i] = packRgba8(
-        unitToByteExact(reader.asFloat(ch[0], i)), unitToByteExact(reader.asFloat(ch[1], i)),
-        unitToByteExact(reader.asFloat(ch[2], i)), unitToByteExact(reader.asFloat(ch[3], i)));
-    fb.depth[i] = reader.asFloat(ch[4], i);
-    fb.id[i] = uint64_t(reader.asUint(ch[6], i)) << 32 | reader.asUint(ch[5], i);
-  }
+  Framebuffer fb(in.spec().width, in.spec().height);
+  in.forEachPixel([&](size_t i) {
+    fb.color[i] = packRgba8(unitToByteExact(in.asFloat(colour[0], i)),
+                            unitToByteExact(in.asFloat(colour[1], i)),
+                            unitToByteExact(in.asFloat(colour[2], i)),
+                            unitToByteExact(in.asFloat(colour[3], i)));
+    fb.depth[i] = in.asFloat(colour[4], i);
+    fb.id[i] = in.asId(id[0], id[1], i);
+  });
   return fb;
+}
+
+ReferenceFrame readReferenceExr(const std::filesystem::path& path) {
+  ExrReader in(path);
+  if (channelIndex(in.spec(), subsampleIdLowChannel(0)) < 0)
+    fail(path, "has no sub-sample channels (\"" + subsampleIdLowChannel(0) +
+                   "\" ...): render the reference with `lzb render --subsamples`");
+  std::vector<std::string> idNames = {kIdLowChannel, kIdHighChannel};
+  for (int k = 0; k < kSubsamples; ++k) {
+    idNames.push_back(subsampleIdLowChannel(k));
+    idNames.push_back(subsampleIdHighChannel(k));
+  }
+  const std::vector<int> id = in.channels(idNames, true);  // centre, then sub-sample pairs
+  const std::vector<int> box =
+      in.channels({kBoxColorChannels[0], kBoxColorChannels[1], kBoxColorChannels[2]}, false);
+
+  ReferenceFrame ref(in.spec().width, in.spec().height);
+  in.forEachPixel([&](size_t i) {
+    ref.centreId[i] = in.asId(id[0], id[1], i);
+    for (size_t k = 0; k < size_t(kSubsamples); ++k)
+      ref.subsampleId[i * kSubsamples + k] = in.asId(id[2 + 2 * k], id[3 + 2 * k], i);
+    for (size_t c = 0; c < 3; ++c) ref.boxColor[i][c] = unitToBoxMean(in.asFloat(box[c], i));
+  });
+  return ref;
 }
 
 }  // namespace lzb

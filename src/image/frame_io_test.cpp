@@ -227,18 +227,86 @@ TEST_F(FrameIoTest, PngIsNotAFrameExr) {
   }
 }
 
-TEST_F(FrameIoTest, CompareFilesOfOneFrameIsPerfect) {
+// sampleFrame's reference data: sub-sample IDs around the centre's (incl. > 2^32 and kNoId) and
+// box colours on every sixteenth of a byte, up to 255.
+ReferenceFrame sampleReference(const Framebuffer& fb) {
+  ReferenceFrame ref(fb.width, fb.height);
+  ref.centreId = fb.id;
+  for (size_t i = 0; i < ref.size(); ++i) {
+    for (int k = 0; k < kSubsamples; ++k)
+      ref.subsampleId[i * kSubsamples + size_t(k)] = k == 5 ? kNoId : fb.id[i] + uint64_t(k) * (1ull << 32);
+    for (int c = 0; c < 3; ++c)
+      ref.boxColor[i][size_t(c)] = float((i * 37 + size_t(c) * 1361) % 4081) / 16.0f;
+  }
+  ref.boxColor[0] = {255.0f, 254.9375f, 0.0625f};
+  return ref;
+}
+
+TEST_F(FrameIoTest, SubsampleChannelsRoundTripExactly) {
+  const Framebuffer fb = sampleFrame();
+  const ReferenceFrame ref = sampleReference(fb);
+  writeFrame(fb, dir_, 4, &ref);
+  const fs::path exr = dir_ / "frame_0004.exr";
+  expectSameFrame(fb, readFrameExr(exr));  // the plain reader still reads it
+  const ReferenceFrame back = readReferenceExr(exr);
+  ASSERT_EQ(back.width, fb.width);
+  ASSERT_EQ(back.height, fb.height);
+  EXPECT_EQ(back.centreId, ref.centreId);
+  EXPECT_EQ(back.subsampleId, ref.subsampleId);
+  for (size_t i = 0; i < ref.size(); ++i)
+    for (int c = 0; c < 3; ++c)
+      ASSERT_EQ(back.boxColor[i][size_t(c)], ref.boxColor[i][size_t(c)]) << i << " " << c;
+}
+
+TEST_F(FrameIoTest, SubsampleChannelsAreNamedAndTyped) {
+  const Framebuffer fb = sampleFrame();
+  const ReferenceFrame ref = sampleReference(fb);
+  writeFrame(fb, dir_, 0, &ref);
+  auto in = OIIO::ImageInput::open((dir_ / "frame_0000.exr").string());
+  ASSERT_TRUE(in);
+  const OIIO::ImageSpec& spec = in->spec();
+  std::map<std::string, OIIO::TypeDesc> formats;
+  for (int c = 0; c < spec.nchannels; ++c)
+    formats[spec.channelnames[size_t(c)]] = spec.channelformat(c);
+  ASSERT_EQ(formats.size(), 7u + 32u + 3u);
+  EXPECT_EQ(formats.at("sub.ID.0"), OIIO::TypeDesc::UINT32);
+  EXPECT_EQ(formats.at("sub.ID.hi.15"), OIIO::TypeDesc::UINT32);
+  EXPECT_EQ(formats.at("R.aa"), OIIO::TypeDesc::FLOAT);
+  EXPECT_EQ(formats.at("B.aa"), OIIO::TypeDesc::FLOAT);
+}
+
+TEST_F(FrameIoTest, PlainFrameIsNotAReference) {
   writeFrame(sampleFrame(), dir_, 0);
   const fs::path exr = dir_ / "frame_0000.exr";
+  try {
+    readReferenceExr(exr);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(exr.string()), std::string::npos) << what;
+    EXPECT_NE(what.find("--subsamples"), std::string::npos) << what;
+  }
+}
+
+TEST_F(FrameIoTest, CompareFilesOfAFrameWithItsOwnReferenceIsCorrect) {
+  const Framebuffer fb = sampleFrame();
+  const ReferenceFrame ref = sampleReference(fb);
+  writeFrame(fb, dir_, 0, &ref);
+  const fs::path exr = dir_ / "frame_0000.exr";
   const nlohmann::json j = compareFiles(exr, exr);
-  EXPECT_EQ(j.at("correct_pixel_rate"), 1.0);
-  EXPECT_EQ(j.at("rmse"), 0.0);
-  EXPECT_TRUE(j.at("psnr").is_null());
+  EXPECT_EQ(j.at("correct_rate_covered"), 1.0);
+  EXPECT_EQ(j.at("exact_id_rate_covered"), 1.0);
+  EXPECT_EQ(j.at("pixels"), fb.size());
+  // The colours are the frame's, not the box filter's: a finite PSNR.
+  EXPECT_GT(j.at("rmse_aa").get<double>(), 0.0);
+  EXPECT_FALSE(j.at("psnr_aa").is_null());
 }
 
 TEST_F(FrameIoTest, CompareFilesOfDifferentSizesNamesBoth) {
   writeFrame(sampleFrame(), dir_, 0);
-  writeFrame(Framebuffer(5, 5), dir_, 1);
+  const Framebuffer small(5, 5);
+  const ReferenceFrame smallRef = sampleReference(small);
+  writeFrame(small, dir_, 1, &smallRef);
   const fs::path a = dir_ / "frame_0000.exr", b = dir_ / "frame_0001.exr";
   try {
     compareFiles(a, b);

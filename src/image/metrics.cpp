@@ -1,6 +1,5 @@
 #include "src/image/metrics.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -10,74 +9,108 @@
 namespace lzb {
 namespace {
 
-std::string sizeText(const Framebuffer& fb) {
-  return std::to_string(fb.width) + "x" + std::to_string(fb.height);
+std::string sizeText(int width, int height) {
+  return std::to_string(width) + "x" + std::to_string(height);
 }
 
-// True when `id` occurs in the reference's 3x3 window around (x, y), clipped to the image.
-bool inNeighbourhood(const Framebuffer& ref, int x, int y, uint64_t id) {
-  const int x0 = std::max(x - 1, 0), x1 = std::min(x + 1, ref.width - 1);
-  const int y0 = std::max(y - 1, 0), y1 = std::min(y + 1, ref.height - 1);
-  for (int v = y0; v <= y1; ++v)
-    for (int u = x0; u <= x1; ++u)
-      if (ref.id[ref.index(u, v)] == id) return true;
-  return false;
+// How one pixel's reference samples relate to a test ID.
+struct PixelVerdict {
+  bool correct = false;    // the ID is one of the 17
+  bool anyCovered = false;  // some reference sample shows geometry
+  bool allCovered = true;   // every reference sample shows geometry
+};
+
+PixelVerdict judgePixel(const ReferenceFrame& ref, size_t pixel, uint64_t id) {
+  PixelVerdict v;
+  const uint64_t centre = ref.centreId[pixel];
+  v.correct = id == centre;
+  v.anyCovered = centre != kNoId;
+  v.allCovered = centre != kNoId;
+  const uint64_t* sub = ref.subsamples(pixel);
+  for (int k = 0; k < kSubsamples; ++k) {
+    v.correct |= sub[k] == id;
+    v.anyCovered |= sub[k] != kNoId;
+    v.allCovered &= sub[k] != kNoId;
+  }
+  return v;
+}
+
+double squaredColourError(Rgba8 test, const std::array<float, 3>& box) {
+  double sum = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const double d = double(channel(test, c)) - double(box[size_t(c)]);
+    sum += d * d;
+  }
+  return sum;
+}
+
+double rateOf(size_t count, size_t total) {
+  return total == 0 ? 1.0 : double(count) / double(total);
 }
 
 }  // namespace
 
-Accuracy compare(const Framebuffer& test, const Framebuffer& reference) {
+Accuracy compare(const Framebuffer& test, const ReferenceFrame& reference) {
   if (test.width != reference.width || test.height != reference.height)
-    throw InputError("compare: image sizes differ (" + sizeText(test) + " vs reference " +
-                     sizeText(reference) + ")");
+    throw InputError("compare: image sizes differ (" + sizeText(test.width, test.height) +
+                     " vs reference " + sizeText(reference.width, reference.height) + ")");
   if (test.size() == 0) throw InputError("compare: empty images");
 
-  Accuracy a;
-  a.pixels = test.size();
-  size_t correct = 0, exact = 0, missing = 0, extra = 0, mismatch = 0;
+  size_t covered = 0, correct = 0, correctCovered = 0, exact = 0, missing = 0, extra = 0, wrong = 0;
   double squared = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : correct, exact, missing, extra, mismatch, squared)
+#pragma omp parallel for schedule(static) \
+    reduction(+ : covered, correct, correctCovered, exact, missing, extra, wrong, squared)
   for (int y = 0; y < test.height; ++y) {
     for (int x = 0; x < test.width; ++x) {
       const size_t i = test.index(x, y);
-      const uint64_t id = test.id[i], refId = reference.id[i];
-      const bool ok = id == refId || inNeighbourhood(reference, x, y, id);
-      correct += ok;
-      exact += id == refId;
-      missing += id == kNoId && refId != kNoId;
-      extra += id != kNoId && refId == kNoId;
-      mismatch += !ok && id != kNoId && refId != kNoId;
-      for (int k = 0; k < 3; ++k) {
-        const double d = double(channel(test.color[i], k)) - double(channel(reference.color[i], k));
-        squared += d * d;
-      }
+      const uint64_t id = test.id[i];
+      const PixelVerdict v = judgePixel(reference, i, id);
+      const bool testCovered = id != kNoId;
+      const bool isCovered = testCovered || v.anyCovered;
+      covered += isCovered;
+      correct += v.correct;
+      correctCovered += isCovered && v.correct;
+      exact += isCovered && id == reference.centreId[i];
+      missing += !testCovered && v.allCovered;
+      extra += testCovered && !v.anyCovered;
+      wrong += testCovered && v.anyCovered && !v.correct;
+      squared += squaredColourError(test.color[i], reference.boxColor[i]);
     }
   }
+  Accuracy a;
+  a.pixels = test.size();
+  a.coveredPixels = covered;
   a.correctPixels = correct;
-  a.exactPixels = exact;
+  a.correctCoveredPixels = correctCovered;
+  a.exactCoveredPixels = exact;
   a.missingPixels = missing;
   a.extraPixels = extra;
-  a.coveredMismatch = mismatch;
-  a.correctPixelRate = double(correct) / double(a.pixels);
-  a.exactIdRate = double(exact) / double(a.pixels);
-  a.rmse = std::sqrt(squared / (3.0 * double(a.pixels)));
-  a.psnr =
-      a.rmse > 0.0 ? 20.0 * std::log10(255.0 / a.rmse) : std::numeric_limits<double>::infinity();
+  a.wrongPixels = wrong;
+  a.correctRateCovered = rateOf(correctCovered, covered);
+  a.correctRateAll = rateOf(correct, a.pixels);
+  a.exactIdRateCovered = rateOf(exact, covered);
+  a.rmseAa = std::sqrt(squared / (3.0 * double(a.pixels)));
+  a.psnrAa = a.rmseAa > 0.0 ? 20.0 * std::log10(255.0 / a.rmseAa)
+                            : std::numeric_limits<double>::infinity();
   return a;
 }
 
 nlohmann::json toJson(const Accuracy& a) {
   nlohmann::json j;
-  j["correct_pixel_rate"] = a.correctPixelRate;
-  j["exact_id_rate"] = a.exactIdRate;
-  j["psnr"] = std::isfinite(a.psnr) ? nlohmann::json(a.psnr) : nlohmann::json(nullptr);
-  j["rmse"] = a.rmse;
+  j["correct_rate_covered"] = a.correctRateCovered;
+  j["correct_rate_all"] = a.correctRateAll;
+  j["exact_id_rate_covered"] = a.exactIdRateCovered;
+  j["psnr_aa"] = std::isfinite(a.psnrAa) ? nlohmann::json(a.psnrAa) : nlohmann::json(nullptr);
+  j["rmse_aa"] = a.rmseAa;
   j["pixels"] = a.pixels;
+  j["covered_pixels"] = a.coveredPixels;
   j["correct_pixels"] = a.correctPixels;
-  j["exact_pixels"] = a.exactPixels;
+  j["correct_covered_pixels"] = a.correctCoveredPixels;
+  j["exact_covered_pixels"] = a.exactCoveredPixels;
   j["missing_pixels"] = a.missingPixels;
   j["extra_pixels"] = a.extraPixels;
-  j["covered_mismatch"] = a.coveredMismatch;
+  j["wrong_pixels"] = a.wrongPixels;
+  j["reference_samples_per_pixel"] = a.referenceSamplesPerPixel;
   return j;
 }
 

@@ -1,41 +1,54 @@
 #pragma once
-// Accuracy of a rendered frame against a reference (normally the exact ray caster).
+// Accuracy of a rendered frame against an exact reference (reference.hpp), as the papers define it:
+// a pixel is correct when it shows a triangle visible somewhere in that pixel. The reference
+// knows a pixel's visible triangles from 17 samples: its centre and a 4 x 4 grid of sub-samples.
 //
-// Correct pixel (the papers' definition: the pixel shows a triangle visible in that pixel).
-// The reference samples only pixel centres, so a triangle visible somewhere in a pixel may be
-// missing from the reference at that pixel but shows at a neighbouring centre. Hence:
-//   a pixel is correct when its ID equals the reference ID at the same pixel or at one of its
-//   8 neighbours (only existing neighbours at the image border); an empty test pixel is
-//   correct when the reference pixel or one of its neighbours is empty.
-// Both cases read "the test ID (kNoId included) occurs in the reference's 3x3 window".
-// exactIdRate is the strict per-pixel version (both empty counts as equal).
-// RMSE is over R, G, B in [0, 255] units, all pixels, alpha ignored; PSNR = 20 log10(255/RMSE),
-// +inf for identical colours.
+//   correct   the test ID (kNoId included) is one of the pixel's 17 reference IDs; an empty
+//             test pixel is correct when at least one reference sample of the pixel is empty.
+//   covered   the test pixel or any reference sample of the pixel shows geometry.
+//   missing   test empty where every reference sample shows geometry (a hole);
+//   extra     test shows geometry where no reference sample does;
+//   wrong     both covered, the test ID not among the 17;
+//             missing + extra + wrong = covered - correct covered.
+//   exact     the test ID equals the reference centre ID (counted over covered pixels).
+// A pixel counted correct is correct by the definition; on triangles much smaller than the
+// samples' quarter-pixel spacing the converse fails, and the rates are lower bounds (README.md).
+// Rates over covered pixels are 1 when no pixel is covered (nothing could be wrong; the count
+// coveredPixels = 0 says so). RMSE is over R, G, B in [0, 255] units, all pixels, alpha ignored,
+// of the test colour against the box-filtered reference colour (antialiased: "aa");
+// PSNR = 20 log10(255 / RMSE), +inf for identical colours.
 #include <cstddef>
 #include <nlohmann/json.hpp>
 
 #include "src/core/framebuffer.hpp"
+#include "src/image/reference.hpp"
 
 namespace lzb {
 
 struct Accuracy {
-  double correctPixelRate = 0.0;  // correctPixels / pixels
-  double exactIdRate = 0.0;       // exactPixels / pixels
-  double psnr = 0.0;              // dB; +inf when rmse == 0
-  double rmse = 0.0;              // RGB, [0, 255] units
+  double correctRateCovered = 0.0;  // correctCoveredPixels / coveredPixels
+  double correctRateAll = 0.0;      // correctPixels / pixels
+  double exactIdRateCovered = 0.0;  // exactCoveredPixels / coveredPixels
+  double psnrAa = 0.0;              // dB; +inf when rmseAa == 0
+  double rmseAa = 0.0;              // RGB, [0, 255] units, against the box-filtered colour
   size_t pixels = 0;
-  size_t correctPixels = 0;    // neighbour rule above
-  size_t exactPixels = 0;      // same ID as the reference pixel
-  size_t missingPixels = 0;    // test empty where the reference pixel is covered (holes)
-  size_t extraPixels = 0;      // test covered where the reference pixel is empty
-  size_t coveredMismatch = 0;  // both covered, not correct under the neighbour rule
+  size_t coveredPixels = 0;
+  size_t correctPixels = 0;         // over all pixels
+  size_t correctCoveredPixels = 0;
+  size_t exactCoveredPixels = 0;
+  size_t missingPixels = 0;
+  size_t extraPixels = 0;
+  size_t wrongPixels = 0;
+  int referenceSamplesPerPixel = kReferenceSamplesPerPixel;
 };
 
 // Compares `test` with `reference`. Throws InputError when their sizes differ or are empty.
-Accuracy compare(const Framebuffer& test, const Framebuffer& reference);
+Accuracy compare(const Framebuffer& test, const ReferenceFrame& reference);
 
-// JSON object with snake_case keys (correct_pixel_rate, exact_id_rate, psnr, rmse, pixels,
-// correct_pixels, exact_pixels, missing_pixels, extra_pixels, covered_mismatch).
+// JSON object with snake_case keys: correct_rate_covered, correct_rate_all,
+// exact_id_rate_covered, psnr_aa, rmse_aa, pixels, covered_pixels, correct_pixels,
+// correct_covered_pixels, exact_covered_pixels, missing_pixels, extra_pixels, wrong_pixels,
+// reference_samples_per_pixel.
 // JSON has no infinity: an infinite PSNR (identical colours) is written as null, never as a
 // sentinel number that a plot or an average could mistake for a measurement.
 nlohmann::json toJson(const Accuracy& a);

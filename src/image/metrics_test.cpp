@@ -10,106 +10,166 @@
 namespace lzb {
 namespace {
 
-// Left half triangle 1 (red), right half triangle 2 (green) from column `edge` on; the bottom
-// row is empty.
-Framebuffer edgeImage(int edge) {
-  Framebuffer fb(16, 12);
-  for (int y = 0; y < fb.height - 1; ++y)
-    for (int x = 0; x < fb.width; ++x) {
-      const size_t i = fb.index(x, y);
-      const bool right = x >= edge;
-      fb.id[i] = right ? 2 : 1;
-      fb.depth[i] = right ? 2.0f : 1.0f;
-      fb.color[i] = right ? packRgba8(0, 200, 0) : packRgba8(200, 0, 0);
-    }
+// A reference whose 17 samples all show `id` with colour `c` (kNoId: empty, kBackground).
+ReferenceFrame uniformReference(int w, int h, uint64_t id, Rgba8 c) {
+  ReferenceFrame ref(w, h);
+  for (size_t i = 0; i < ref.size(); ++i) {
+    ref.centreId[i] = id;
+    for (int k = 0; k < kSubsamples; ++k) ref.subsampleId[i * kSubsamples + size_t(k)] = id;
+    for (int ch = 0; ch < 3; ++ch) ref.boxColor[i][size_t(ch)] = float(channel(c, ch));
+  }
+  return ref;
+}
+
+// A frame showing `id` with colour `c` everywhere.
+Framebuffer uniformFrame(int w, int h, uint64_t id, Rgba8 c) {
+  Framebuffer fb(w, h);
+  for (size_t i = 0; i < fb.size(); ++i) {
+    fb.id[i] = id;
+    fb.color[i] = c;
+    fb.depth[i] = id == kNoId ? kEmptyDepth : 1.0f;
+  }
   return fb;
 }
 
-TEST(Metrics, IdenticalImagesArePerfect) {
-  const Framebuffer fb = edgeImage(8);
-  const Accuracy a = compare(fb, fb);
-  EXPECT_EQ(a.pixels, fb.size());
-  EXPECT_EQ(a.correctPixelRate, 1.0);
-  EXPECT_EQ(a.exactIdRate, 1.0);
-  EXPECT_EQ(a.rmse, 0.0);
-  EXPECT_TRUE(std::isinf(a.psnr) && a.psnr > 0);
-  EXPECT_EQ(a.missingPixels + a.extraPixels + a.coveredMismatch, 0u);
+void setSubsample(ReferenceFrame& ref, size_t pixel, int k, uint64_t id) {
+  ref.subsampleId[pixel * kSubsamples + size_t(k)] = id;
+}
+
+constexpr Rgba8 kGrey = packRgba8(100, 100, 100);
+
+void expectCountsAddUp(const Accuracy& a) {
+  EXPECT_EQ(a.missingPixels + a.extraPixels + a.wrongPixels,
+            a.coveredPixels - a.correctCoveredPixels);
+  EXPECT_EQ(a.correctPixels - a.correctCoveredPixels, a.pixels - a.coveredPixels);
+  EXPECT_EQ(a.referenceSamplesPerPixel, 17);
+}
+
+TEST(Metrics, TheReferenceItselfIsPerfect) {
+  const ReferenceFrame ref = uniformReference(6, 4, 3, kGrey);
+  const Accuracy a = compare(uniformFrame(6, 4, 3, kGrey), ref);
+  EXPECT_EQ(a.pixels, 24u);
+  EXPECT_EQ(a.coveredPixels, 24u);
+  EXPECT_EQ(a.correctRateCovered, 1.0);
+  EXPECT_EQ(a.correctRateAll, 1.0);
+  EXPECT_EQ(a.exactIdRateCovered, 1.0);
+  EXPECT_EQ(a.rmseAa, 0.0);
+  EXPECT_TRUE(std::isinf(a.psnrAa) && a.psnrAa > 0);
+  expectCountsAddUp(a);
   const nlohmann::json j = toJson(a);
-  EXPECT_TRUE(j.at("psnr").is_null());
-  EXPECT_EQ(j.at("correct_pixel_rate"), 1.0);
-  EXPECT_EQ(j.at("pixels"), fb.size());
+  EXPECT_TRUE(j.at("psnr_aa").is_null());
+  EXPECT_EQ(j.at("correct_rate_covered"), 1.0);
+  EXPECT_EQ(j.at("reference_samples_per_pixel"), 17);
+  EXPECT_EQ(j.size(), 14u);
   // Round-trips through text: no inf or nan reaches the JSON.
   EXPECT_EQ(nlohmann::json::parse(j.dump()), j);
 }
 
-TEST(Metrics, OnePixelShiftStaysCorrectButNotExact) {
-  const Framebuffer ref = edgeImage(8);
-  const Framebuffer shifted = edgeImage(9);    // one column of pixels changes ID
-  const Framebuffer shifted2 = edgeImage(10);  // two columns: one is beyond the neighbours
-  const Accuracy a = compare(shifted, ref);
-  EXPECT_EQ(a.correctPixelRate, 1.0);
-  EXPECT_EQ(a.exactPixels, ref.size() - 11);  // column 8 of the 11 covered rows
-  EXPECT_LT(a.exactIdRate, 1.0);
-  EXPECT_GT(a.rmse, 0.0);
-  const Accuracy b = compare(shifted2, ref);
-  EXPECT_EQ(b.correctPixels, ref.size() - 11);  // column 9 shows 1; ref has 2 at 8..10
-  EXPECT_EQ(b.coveredMismatch, 11u);
-  EXPECT_EQ(b.exactPixels, ref.size() - 22);
+TEST(Metrics, AnIdSeenByOneSubsampleIsCorrectButNotExact) {
+  ReferenceFrame ref = uniformReference(3, 2, 5, kGrey);
+  setSubsample(ref, 4, 13, 9);  // a sub-pixel triangle seen once, in pixel 4
+  Framebuffer test = uniformFrame(3, 2, 5, kGrey);
+  test.id[4] = 9;
+  test.id[1] = 9;  // not seen in pixel 1
+  const Accuracy a = compare(test, ref);
+  EXPECT_EQ(a.correctCoveredPixels, 5u);
+  EXPECT_EQ(a.wrongPixels, 1u);
+  EXPECT_EQ(a.exactCoveredPixels, 4u);
+  EXPECT_DOUBLE_EQ(a.correctRateCovered, 5.0 / 6.0);
+  EXPECT_DOUBLE_EQ(a.exactIdRateCovered, 4.0 / 6.0);
+  expectCountsAddUp(a);
 }
 
-TEST(Metrics, EmptyPixelsFollowTheNeighbourRule) {
-  const Framebuffer ref = edgeImage(8);
-  Framebuffer test = ref;
-  test.id[test.index(3, 10)] = kNoId;  // next to the empty bottom row: correct
-  test.id[test.index(3, 5)] = kNoId;   // a hole inside triangle 1: wrong
-  Framebuffer covered = ref;
-  covered.id[covered.index(4, 11)] = 1;   // covers an empty pixel next to triangle 1: correct
-  covered.id[covered.index(15, 11)] = 7;  // unknown ID: wrong
-  const Accuracy a = compare(test, ref);
-  EXPECT_EQ(a.correctPixels, ref.size() - 1);
-  EXPECT_EQ(a.missingPixels, 2u);
-  EXPECT_EQ(a.coveredMismatch, 0u);
-  const Accuracy b = compare(covered, ref);
-  EXPECT_EQ(b.correctPixels, ref.size() - 1);
-  EXPECT_EQ(b.extraPixels, 2u);
+TEST(Metrics, TheCentreIdCountsAsOneOfTheSeventeen) {
+  ReferenceFrame ref = uniformReference(1, 1, 5, kGrey);
+  ref.centreId[0] = 8;  // seen at the centre only
+  const Accuracy a = compare(uniformFrame(1, 1, 8, kGrey), ref);
+  EXPECT_EQ(a.correctCoveredPixels, 1u);
+  EXPECT_EQ(a.exactCoveredPixels, 1u);
 }
 
-TEST(Metrics, BorderPixelsUseOnlyExistingNeighbours) {
-  Framebuffer ref(3, 1), test(3, 1);
-  ref.id = {5, 6, 7};
-  test.id = {6, 7, 5};  // 6 and 7 are neighbours of 0 and 1; 5 is two pixels from pixel 2
+TEST(Metrics, SkyOnlyFramesHaveNoCoveredPixelsAndRatesOfOne) {
+  const ReferenceFrame ref = uniformReference(4, 3, kNoId, kBackground);
+  const Accuracy a = compare(uniformFrame(4, 3, kNoId, kBackground), ref);
+  EXPECT_EQ(a.coveredPixels, 0u);
+  EXPECT_EQ(a.correctPixels, 12u);
+  EXPECT_EQ(a.correctRateCovered, 1.0);
+  EXPECT_EQ(a.exactIdRateCovered, 1.0);
+  EXPECT_EQ(a.correctRateAll, 1.0);
+  EXPECT_EQ(toJson(a).at("correct_rate_covered"), 1.0);
+  expectCountsAddUp(a);
+}
+
+TEST(Metrics, HolesAreEmptyPixelsWhereEverySampleIsCovered) {
+  ReferenceFrame ref = uniformReference(4, 1, 5, kGrey);
+  setSubsample(ref, 1, 0, kNoId);  // pixel 1: an edge, one sub-sample sees the sky
+  ref.centreId[2] = kNoId;         // pixel 2: the centre sees the sky
+  Framebuffer test = uniformFrame(4, 1, kNoId, kBackground);
+  test.id[3] = 5;
   const Accuracy a = compare(test, ref);
-  EXPECT_EQ(a.correctPixels, 2u);
-  EXPECT_EQ(a.exactPixels, 0u);
+  EXPECT_EQ(a.coveredPixels, 4u);
+  EXPECT_EQ(a.missingPixels, 1u);  // pixel 0 only: 1 and 2 may show the sky
+  EXPECT_EQ(a.correctCoveredPixels, 3u);
+  EXPECT_EQ(a.exactCoveredPixels, 2u);  // pixels 2 (both empty) and 3
+  EXPECT_EQ(a.wrongPixels + a.extraPixels, 0u);
+  expectCountsAddUp(a);
+}
+
+TEST(Metrics, ExtrasShowGeometryWhereNoSampleDoes) {
+  ReferenceFrame ref = uniformReference(3, 1, kNoId, kBackground);
+  setSubsample(ref, 2, 7, 4);  // pixel 2 sees triangle 4 once
+  Framebuffer test = uniformFrame(3, 1, 4, kGrey);
+  test.id[1] = kNoId;
+  const Accuracy a = compare(test, ref);
+  EXPECT_EQ(a.coveredPixels, 2u);   // pixel 0 (test) and pixel 2 (both)
+  EXPECT_EQ(a.extraPixels, 1u);     // pixel 0
+  EXPECT_EQ(a.correctCoveredPixels, 1u);
+  EXPECT_EQ(a.correctPixels, 2u);   // pixel 1 is empty in both
+  EXPECT_DOUBLE_EQ(a.correctRateAll, 2.0 / 3.0);
+  EXPECT_DOUBLE_EQ(a.correctRateCovered, 0.5);
+  expectCountsAddUp(a);
+}
+
+TEST(Metrics, WrongPixelsShowATriangleNoSampleSees) {
+  ReferenceFrame ref = uniformReference(2, 2, 5, kGrey);
+  setSubsample(ref, 3, 2, kNoId);
+  Framebuffer test = uniformFrame(2, 2, 6, kGrey);
+  test.id[0] = 5;
+  const Accuracy a = compare(test, ref);
+  EXPECT_EQ(a.wrongPixels, 3u);
+  EXPECT_EQ(a.missingPixels + a.extraPixels, 0u);
+  expectCountsAddUp(a);
 }
 
 TEST(Metrics, RandomIdsAreMostlyWrong) {
-  const Framebuffer ref = edgeImage(8);
-  Framebuffer test = ref;
+  const ReferenceFrame ref = uniformReference(16, 12, 5, kGrey);
+  Framebuffer test = uniformFrame(16, 12, 5, kGrey);
   std::mt19937_64 rng(7);
   for (auto& id : test.id) id = 1000 + rng() % 100000;
   const Accuracy a = compare(test, ref);
-  EXPECT_LT(a.correctPixelRate, 0.05);
-  EXPECT_LT(a.exactIdRate, 0.05);
-  EXPECT_GT(a.coveredMismatch, ref.size() / 2);
+  EXPECT_LT(a.correctRateCovered, 0.05);
+  EXPECT_LT(a.exactIdRateCovered, 0.05);
+  EXPECT_GT(a.wrongPixels, ref.size() / 2);
 }
 
-TEST(Metrics, RmseAndPsnrMatchAHandComputedExample) {
-  Framebuffer ref(2, 1), test(2, 1);
-  ref.color = {packRgba8(10, 20, 30, 255), packRgba8(0, 0, 0, 0)};
+TEST(Metrics, RmseIsAgainstTheBoxFilteredColour) {
+  ReferenceFrame ref(2, 1);
+  ref.boxColor = {{10.5f, 20.0f, 30.0f}, {0.0f, 0.0f, 0.0625f}};
+  Framebuffer test(2, 1);
   test.color = {packRgba8(13, 16, 30, 0), packRgba8(0, 0, 12, 255)};  // alpha is ignored
-  // Differences 3, -4, 0, 0, 0, 12: sum of squares 169 over 6 values.
+  // Differences 2.5, -4, 0, 0, 0, 11.9375 over 6 values.
+  const double squares = 2.5 * 2.5 + 16.0 + 11.9375 * 11.9375;
   const Accuracy a = compare(test, ref);
-  const double rmse = std::sqrt(169.0 / 6.0);
-  EXPECT_DOUBLE_EQ(a.rmse, rmse);
-  EXPECT_DOUBLE_EQ(a.psnr, 20.0 * std::log10(255.0 / rmse));
-  EXPECT_NEAR(a.psnr, 33.6334, 1e-3);
-  EXPECT_DOUBLE_EQ(toJson(a).at("psnr").get<double>(), a.psnr);
+  const double rmse = std::sqrt(squares / 6.0);
+  EXPECT_DOUBLE_EQ(a.rmseAa, rmse);
+  EXPECT_DOUBLE_EQ(a.psnrAa, 20.0 * std::log10(255.0 / rmse));
+  EXPECT_DOUBLE_EQ(toJson(a).at("psnr_aa").get<double>(), a.psnrAa);
+  EXPECT_DOUBLE_EQ(toJson(a).at("rmse_aa").get<double>(), a.rmseAa);
 }
 
 TEST(Metrics, SizeMismatchThrows) {
-  EXPECT_THROW(compare(Framebuffer(4, 4), Framebuffer(4, 5)), InputError);
-  EXPECT_THROW(compare(Framebuffer(), Framebuffer()), InputError);
+  EXPECT_THROW(compare(Framebuffer(4, 4), ReferenceFrame(4, 5)), InputError);
+  EXPECT_THROW(compare(Framebuffer(), ReferenceFrame()), InputError);
 }
 
 }  // namespace

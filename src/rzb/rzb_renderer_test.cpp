@@ -73,30 +73,31 @@ TEST(RzbRenderer, TwoRanksWithWideKeysOnTenToTheTwelveTriangles) {
   EXPECT_GT(whole.coveredCount(), whole.size() / 3);
 }
 
-// Two measures (src/image/metrics.hpp's 3x3 rule, and the pixel's ID seen anywhere inside it by
-// a 4x supersampled z-buffer, the papers' "visible in that pixel" for sub-pixel triangles, which
-// the 3x3 rule cannot see). The default (fallback on) must pass the 3x3 rule; the point pass
-// itself, with most triangles sampled, the supersampled one.
+// Two measures: the report's (src/image/metrics.hpp: the pixel's ID is one of the z-buffer's 17
+// samples of the pixel, over covered pixels) and visibleInPixelRate (the ID seen anywhere in a
+// 5x supersampled z-buffer around the pixel). The 17 samples cannot see most triangles much
+// smaller than a pixel, so a random point sampler is held to the denser measure: the defaults
+// (fallback on) must pass the report's; the point pass itself, with most triangles sampled, the
+// supersampled one.
 void expectAccurate(const Scene& scene, const Camera& camera, const std::string& name,
                     const RzbParams& pointParams) {
-  const Framebuffer ref = renderZBuffer(scene, camera);
+  const ReferenceFrame ref = zbufferReference(scene, camera);
   {
     RzbRenderer r(scene, options(2), RzbParams{});
-    const Framebuffer fb = renderWith(r, camera);
-    const Accuracy a = compare(fb, ref);
-    std::printf("[ rzb      ] %s %dx%d, defaults: correct %.4f (3x3 rule)\n", name.c_str(),
-                camera.width(), camera.height(), a.correctPixelRate);
-    EXPECT_GE(a.correctPixelRate, 0.99) << name;
+    const Accuracy a = compare(renderWith(r, camera), ref);
+    std::printf("[ rzb      ] %s %dx%d, defaults: correct %.4f of covered pixels\n", name.c_str(),
+                camera.width(), camera.height(), a.correctRateCovered);
+    EXPECT_GE(a.correctRateCovered, 0.99) << name;
   }
   RzbRenderer r(scene, options(2), pointParams);
   FrameStats stats;
   const Framebuffer fb = renderWith(r, camera, 0, {}, &stats);
   const double visible = visibleInPixelRate(fb, scene, camera);
   std::printf("[ rzb      ] %s, point pass (%g samples, %g fallback triangles): correct %.4f "
-              "(visible in pixel), %.4f (3x3 rule)\n",
+              "(visible in pixel), %.4f of covered pixels (17 samples)\n",
               name.c_str(), stats.counts["samples_drawn"].get<double>(),
               stats.counts["fallback_triangles"].get<double>(), visible,
-              compare(fb, ref).correctPixelRate);
+              compare(fb, ref).correctRateCovered);
   EXPECT_GT(stats.counts["samples_splatted"].get<double>(), 0.5 * double(fb.coveredCount()));
   EXPECT_GE(visible, 0.99) << name;
 }
@@ -141,7 +142,7 @@ TEST(RzbRenderer, LargeTrianglesGoToTheZBufferAndMatchItExactly) {
   FrameStats ps;
   const Framebuffer pf = renderWith(points, camera, 0, {}, &ps);
   EXPECT_EQ(ps.counts["fallback_boxes"].get<double>(), 0.0);
-  EXPECT_GE(compare(pf, fb).correctPixelRate, 0.99);
+  EXPECT_GE(compare(pf, zbufferReference(scene, camera)).correctRateCovered, 0.99);
 }
 
 TEST(RzbRenderer, CachedFramesAreTheSameImageAndHit) {
@@ -215,15 +216,15 @@ TEST(RzbRenderer, GaussReconstructionIsCloseToTheZBuffer) {
   RzbRenderer r(scene, options(2), p);
   FrameStats stats;
   const Framebuffer fb = renderWith(r, camera, 0, {}, &stats);
-  const Framebuffer ref = renderZBuffer(scene, camera);
+  const ReferenceFrame ref = zbufferReference(scene, camera);
   const Accuracy a = compare(fb, ref), ap = compare(pf, ref);
   const double visible = visibleInPixelRate(fb, scene, camera);
   const double visiblePixel = visibleInPixelRate(pf, scene, camera);
-  std::printf("[ rzb      ] city 120x90 gauss: visible in pixel %.4f, PSNR %.1f dB; pixel: %.4f, "
-              "%.1f dB\n", visible, a.psnr, visiblePixel, ap.psnr);
+  std::printf("[ rzb      ] city 120x90 gauss: visible in pixel %.4f, PSNR (aa) %.1f dB; pixel: "
+              "%.4f, %.1f dB\n", visible, a.psnrAa, visiblePixel, ap.psnrAa);
   EXPECT_GT(stats.counts["gauss_visible_samples"].get<double>(), 0.0);
   EXPECT_GE(visible, visiblePixel - 0.02);
-  EXPECT_GT(a.psnr, 20.0);
+  EXPECT_GT(a.psnrAa, 20.0);
   // Every covered pixel got a colour (alpha 255), and not just the flat triangle colour.
   size_t blended = 0;
   for (size_t i = 0; i < fb.size(); ++i) {

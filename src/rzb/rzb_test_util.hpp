@@ -12,6 +12,8 @@
 #include "src/core/framebuffer.hpp"
 #include "src/core/renderer.hpp"
 #include "src/core/test_camera.hpp"
+#include "src/image/metrics.hpp"
+#include "src/image/test_reference.hpp"
 #include "src/rzb/rzb_renderer.hpp"
 #include "src/scene/load.hpp"
 #include "src/zbuffer/zbuffer_renderer.hpp"
@@ -56,6 +58,12 @@ inline bool sameImage(const Framebuffer& a, const Framebuffer& b) {
          std::equal(a.depth.begin(), a.depth.end(), b.depth.begin(), [](float x, float y) {
            return std::bit_cast<uint32_t>(x) == std::bit_cast<uint32_t>(y);
          });
+}
+
+// The exact z-buffer's reference of `camera`: centres and 4x4 sub-samples (src/image/reference.hpp).
+inline ReferenceFrame zbufferReference(const Scene& scene, const Camera& camera) {
+  ZBufferRenderer z(scene, RenderOptions{});
+  return lzb::testing_util::renderReference(z, camera);
 }
 
 // The papers' correct-pixel rate measured closely for sub-pixel triangles: a pixel is correct
