@@ -1,14 +1,367 @@
 #include "mpi/composite.hpp"
 
+#include <algorithm>
+#include <bit>
 #include <cstring>
+#include <vector>
 
+#include "mpi/decomposition.hpp"
+#include "src/core/depth_key.hpp"
+#include "src/core/error.hpp"
 #include "src/core/timer.hpp"
 
 namespace lzb::mpi {
 
+CompositeStrategy parseCompositeStrategy(const std::string& text, const std::string& field) {
+  if (text == "reduce") return CompositeStrategy::kReduce;
+  if (text == "bswap") return CompositeStrategy::kBinarySwap;
+  if (text == "direct") return CompositeStrategy::kDirect;
+  if (text == "tiles") return CompositeStrategy::kTiles;
+  throw InputError(field + ": expected reduce, bswap, direct or tiles, got '" + text + "'");
+}
+
+std::string toString(CompositeStrategy s) {
+  switch (s) {
+    case CompositeStrategy::kReduce: return "reduce";
+    case CompositeStrategy::kBinarySwap: return "bswap";
+    case CompositeStrategy::kDirect: return "direct";
+    case CompositeStrategy::kTiles: return "tiles";
+  }
+  return "?";
+}
+
 namespace {
 
-// One pixel as it travels between ranks.
+// MPI counts are int: messages go in chunks of this many keys.
+constexpr size_t kChunk = size_t(1) << 24;
+
+struct Rect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;  // pixels [x0, x1) x [y0, y1)
+  bool empty() const { return x0 >= x1 || y0 >= y1; }
+  size_t area() const { return empty() ? 0 : size_t(x1 - x0) * size_t(y1 - y0); }
+  Rect intersect(const Rect& o) const {
+    return {std::max(x0, o.x0), std::max(y0, o.y0), std::min(x1, o.x1), std::min(y1, o.y1)};
+  }
+};
+
+Rect rectAt(const std::vector<int>& v, size_t r) {
+  return {v[4 * r], v[4 * r + 1], v[4 * r + 2], v[4 * r + 3]};
+}
+
+void setRect(std::vector<int>& v, size_t r, const Rect& x) {
+  v[4 * r] = x.x0, v[4 * r + 1] = x.y0, v[4 * r + 2] = x.x1, v[4 * r + 3] = x.y1;
+}
+
+// The bounding rectangle of the covered pixels (empty when none is).
+Rect touchedRect(const Framebuffer& fb) {
+  int x0 = fb.width, y0 = fb.height, x1 = 0, y1 = 0;
+#pragma omp parallel for schedule(static) reduction(min : x0, y0) reduction(max : x1, y1)
+  for (int y = 0; y < fb.height; ++y) {
+    const uint64_t* row = fb.id.data() + size_t(y) * size_t(fb.width);
+    int first = 0;
+    while (first < fb.width && row[first] == kNoId) ++first;
+    if (first == fb.width) continue;
+    int last = fb.width - 1;
+    while (row[last] == kNoId) --last;
+    x0 = std::min(x0, first), x1 = std::max(x1, last + 1);
+    y0 = std::min(y0, y), y1 = std::max(y1, y + 1);
+  }
+  return {x0, y0, x1, y1};
+}
+
+Rect unionRect(const Group& g, const Rect& r) {
+  int v[4] = {-r.x0, -r.y0, r.x1, r.y1}, u[4];
+  LZB_MPI_CALL(MPI_Allreduce(v, u, 4, MPI_INT, MPI_MAX, g.comm));
+  return {-u[0], -u[1], u[2], u[3]};
+}
+
+// Key types: the 64-bit key with MPI's own minimum, the 128-bit one with an operator of ours.
+void wideMin(void* in, void* inout, int* len, MPI_Datatype*) {
+  const WideKey* a = static_cast<const WideKey*>(in);
+  WideKey* b = static_cast<WideKey*>(inout);
+  for (int i = 0; i < *len; ++i)
+    if (a[i] < b[i]) b[i] = a[i];
+}
+
+template <class K>
+struct Keys;
+
+template <>
+struct Keys<uint64_t> {
+  static uint64_t of(const Framebuffer& fb, size_t i) {
+    return fb.id[i] == kNoId ? kEmptyKey : narrowKey(fb.depth[i], fb.id[i]);
+  }
+  static void put(Framebuffer& fb, size_t i, uint64_t k) {
+    fb.depth[i] = k == kEmptyKey ? kEmptyDepth : std::bit_cast<float>(uint32_t(k >> 32));
+    fb.id[i] = k == kEmptyKey ? kNoId : (k & 0xffffffffu);
+  }
+  static uint64_t min(uint64_t a, uint64_t b) { return std::min(a, b); }
+  static constexpr uint64_t kEmpty = kEmptyKey;
+  MPI_Datatype type = MPI_UINT64_T;
+  MPI_Op op = MPI_MIN;
+};
+
+template <>
+struct Keys<WideKey> {
+  static WideKey of(const Framebuffer& fb, size_t i) {
+    return fb.id[i] == kNoId ? kEmptyWideKey : wideKey(fb.depth[i], fb.id[i]);
+  }
+  static void put(Framebuffer& fb, size_t i, WideKey k) {
+    const bool empty = k.hi == kEmptyWideKey.hi;
+    fb.depth[i] = empty ? kEmptyDepth : std::bit_cast<float>(uint32_t(k.hi));
+    fb.id[i] = empty ? kNoId : k.lo;
+  }
+  static WideKey min(WideKey a, WideKey b) { return b < a ? b : a; }
+  static constexpr WideKey kEmpty = kEmptyWideKey;
+  MPI_Datatype type;
+  MPI_Op op;
+  Keys() {
+    LZB_MPI_CALL(MPI_Type_contiguous(2, MPI_UINT64_T, &type));
+    LZB_MPI_CALL(MPI_Type_commit(&type));
+    LZB_MPI_CALL(MPI_Op_create(&wideMin, /*commute=*/1, &op));
+  }
+  ~Keys() {
+    MPI_Op_free(&op);
+    MPI_Type_free(&type);
+  }
+};
+
+// The keys of r, row by row.
+template <class K>
+void pack(const Framebuffer& fb, const Rect& r, K* out) {
+  const int w = r.x1 - r.x0;
+#pragma omp parallel for schedule(static)
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x)
+      out[size_t(y - r.y0) * size_t(w) + size_t(x - r.x0)] = Keys<K>::of(fb, fb.index(x, y));
+}
+
+template <class K>
+void unpack(const K* in, const Rect& r, Framebuffer& fb) {
+  const int w = r.x1 - r.x0;
+#pragma omp parallel for schedule(static)
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x)
+      Keys<K>::put(fb, fb.index(x, y), in[size_t(y - r.y0) * size_t(w) + size_t(x - r.x0)]);
+}
+
+// into = min(into, part) where part holds the keys of rect p and into those of rect r (p in r).
+template <class K>
+void mergeRect(K* into, const Rect& r, const K* part, const Rect& p) {
+  const int w = r.x1 - r.x0, pw = p.x1 - p.x0;
+#pragma omp parallel for schedule(static)
+  for (int y = p.y0; y < p.y1; ++y) {
+    K* dst = into + size_t(y - r.y0) * size_t(w) + size_t(p.x0 - r.x0);
+    const K* src = part + size_t(y - p.y0) * size_t(pw);
+    for (int x = 0; x < pw; ++x) dst[x] = Keys<K>::min(dst[x], src[x]);
+  }
+}
+
+template <class K>
+void sendKeys(const Group& g, const K* data, size_t n, int to, const Keys<K>& k) {
+  for (size_t s = 0; s < n; s += kChunk)
+    LZB_MPI_CALL(MPI_Send(data + s, int(std::min(kChunk, n - s)), k.type, to, 0, g.comm));
+}
+
+template <class K>
+void receiveKeys(const Group& g, K* data, size_t n, int from, const Keys<K>& k) {
+  for (size_t s = 0; s < n; s += kChunk)
+    LZB_MPI_CALL(MPI_Recv(data + s, int(std::min(kChunk, n - s)), k.type, from, 0, g.comm,
+                          MPI_STATUS_IGNORE));
+}
+
+// Gathers every rank's rows [rows[2r], rows[2r + 1]) of u's keys at the root and unpacks them.
+template <class K>
+void gatherRows(const Group& g, const std::vector<K>& keys, int rowBegin, int rowEnd, const Rect& u,
+                Framebuffer& fb, const Keys<K>& k, double& bytes) {
+  const size_t w = size_t(u.x1 - u.x0);
+  int mine[2] = {rowBegin, rowEnd};
+  std::vector<int> rows(g.root() ? 2 * size_t(g.size) : 0);
+  LZB_MPI_CALL(MPI_Gather(mine, 2, MPI_INT, rows.data(), 2, MPI_INT, 0, g.comm));
+  std::vector<int> counts, displs;
+  std::vector<K> all;
+  if (g.root()) {
+    all.assign(u.area(), Keys<K>::kEmpty);
+    for (int r = 0; r < g.size; ++r) {
+      counts.push_back(int(size_t(rows[2 * r + 1] - rows[2 * r]) * w));
+      displs.push_back(int(size_t(rows[2 * r]) * w));
+    }
+  }
+  const int count = int(size_t(rowEnd - rowBegin) * w);
+  LZB_MPI_CALL(MPI_Gatherv(keys.data() + size_t(rowBegin) * w, count, k.type, all.data(),
+                           counts.data(), displs.data(), k.type, 0, g.comm));
+  if (g.root()) unpack(all.data(), u, fb);
+  else bytes += double(count) * sizeof(K);
+}
+
+template <class K>
+double reduce(const Group& g, Framebuffer& fb, const Rect& u) {
+  const Keys<K> k;
+  const size_t n = u.area();
+  std::vector<K> mine(n), result(g.root() ? n : 0);
+  pack(fb, u, mine.data());
+  for (size_t s = 0; s < n; s += kChunk)
+    LZB_MPI_CALL(MPI_Reduce(mine.data() + s, g.root() ? result.data() + s : nullptr,
+                            int(std::min(kChunk, n - s)), k.type, k.op, 0, g.comm));
+  if (g.root()) unpack(result.data(), u, fb);
+  return g.root() ? 0.0 : double(n) * sizeof(K);
+}
+
+template <class K>
+double binarySwap(const Group& g, Framebuffer& fb, const Rect& u) {
+  const Keys<K> k;
+  const int height = u.y1 - u.y0;
+  const size_t w = size_t(u.x1 - u.x0);
+  std::vector<K> keys(u.area());
+  pack(fb, u, keys.data());
+  int pow2 = 1;
+  while (pow2 * 2 <= g.size) pow2 *= 2;
+  double bytes = 0.0;
+  int a = 0, b = height;  // u's rows this rank holds
+  if (g.rank >= pow2) {   // fold into the power of two
+    sendKeys(g, keys.data(), keys.size(), g.rank - pow2, k);
+    bytes += double(keys.size()) * sizeof(K);
+    a = b = 0;
+  } else if (g.rank + pow2 < g.size) {
+    std::vector<K> other(keys.size());
+    receiveKeys(g, other.data(), other.size(), g.rank + pow2, k);
+    mergeRect(keys.data(), u, other.data(), u);
+  }
+  if (g.rank < pow2) {
+    std::vector<K> incoming;
+    for (int bit = 1; bit < pow2; bit <<= 1) {
+      const int partner = g.rank ^ bit, mid = a + (b - a) / 2;
+      const bool lower = (g.rank & bit) == 0;
+      const int keepA = lower ? a : mid, keepB = lower ? mid : b;
+      const int sendA = lower ? mid : a, sendB = lower ? b : mid;
+      const size_t sendN = size_t(sendB - sendA) * w, keepN = size_t(keepB - keepA) * w;
+      incoming.resize(keepN);
+      LZB_MPI_CALL(MPI_Sendrecv(keys.data() + size_t(sendA) * w, int(sendN), k.type, partner, 1,
+                                incoming.data(), int(keepN), k.type, partner, 1, g.comm,
+                                MPI_STATUS_IGNORE));
+      bytes += double(sendN) * sizeof(K);
+      const Rect keep{u.x0, u.y0 + keepA, u.x1, u.y0 + keepB};
+      mergeRect(keys.data() + size_t(keepA) * w, keep, incoming.data(), keep);
+      a = keepA, b = keepB;
+    }
+  }
+  gatherRows(g, keys, a, b, u, fb, k, bytes);
+  return bytes;
+}
+
+template <class K>
+double directSend(const Group& g, Framebuffer& fb, const Rect& u, const Rect& touched) {
+  const Keys<K> k;
+  const int P = g.size, height = u.y1 - u.y0;
+  auto stripe = [&](int r) {
+    return Rect{u.x0, u.y0 + int(int64_t(height) * r / P), u.x1, u.y0 + int(int64_t(height) * (r + 1) / P)};
+  };
+  // What this rank sends each stripe's owner: its touched rectangle's part of the stripe.
+  const size_t ranks = static_cast<size_t>(P);
+  std::vector<int> sendRects(4 * ranks), recvRects(4 * ranks);
+  std::vector<int> sendCounts(ranks), sendDispls(ranks), recvCounts(ranks), recvDispls(ranks);
+  std::vector<K> send;
+  for (int r = 0; r < P; ++r) {
+    Rect part = touched.intersect(stripe(r));
+    if (part.empty()) part = {};
+    setRect(sendRects, size_t(r), part);
+    sendDispls[size_t(r)] = int(send.size());
+    sendCounts[size_t(r)] = int(part.area());
+    send.resize(send.size() + part.area());
+    if (!part.empty()) pack(fb, part, send.data() + sendDispls[size_t(r)]);
+  }
+  LZB_MPI_CALL(MPI_Alltoall(sendRects.data(), 4, MPI_INT, recvRects.data(), 4, MPI_INT, g.comm));
+  size_t total = 0;
+  for (int r = 0; r < P; ++r) {
+    const Rect p = rectAt(recvRects, size_t(r));
+    recvDispls[size_t(r)] = int(total);
+    recvCounts[size_t(r)] = int(p.area());
+    total += p.area();
+  }
+  std::vector<K> recv(total);
+  LZB_MPI_CALL(MPI_Alltoallv(send.data(), sendCounts.data(), sendDispls.data(), k.type, recv.data(),
+                             recvCounts.data(), recvDispls.data(), k.type, g.comm));
+  double bytes = 0.0;
+  for (int r = 0; r < P; ++r)
+    if (r != g.rank) bytes += double(sendCounts[size_t(r)]) * sizeof(K);
+  // Reduce this rank's stripe, in the rows of u.
+  const Rect mine = stripe(g.rank);
+  std::vector<K> keys(u.area(), Keys<K>::kEmpty);
+  for (int r = 0; r < P; ++r) {
+    const Rect p = rectAt(recvRects, size_t(r));
+    if (!p.empty()) mergeRect(keys.data(), u, recv.data() + recvDispls[size_t(r)], p);
+  }
+  gatherRows(g, keys, mine.y0 - u.y0, mine.y1 - u.y0, u, fb, k, bytes);
+  return bytes;
+}
+
+template <class K>
+double tileSend(const Group& g, Framebuffer& fb) {
+  const Keys<K> k;
+  const ScreenTiles tiles(fb.width, fb.height);
+  // This rank's touched tiles: index, then the tile's keys row by row.
+  std::vector<char> mine;
+  std::vector<K> tile;
+  if (!g.root()) {
+    for (int t = 0; t < tiles.count(); ++t) {
+      const TileRect r = tiles.tile(t);
+      bool touched = false;
+      for (int y = r.y0; y < r.y1 && !touched; ++y)
+        for (int x = r.x0; x < r.x1 && !touched; ++x) touched = fb.id[fb.index(x, y)] != kNoId;
+      if (!touched) continue;
+      tile.resize(size_t(r.pixels()));
+      pack(fb, Rect{r.x0, r.y0, r.x1, r.y1}, tile.data());
+      const size_t at = mine.size();
+      mine.resize(at + sizeof(int) + tile.size() * sizeof(K));
+      std::memcpy(mine.data() + at, &t, sizeof(int));
+      std::memcpy(mine.data() + at + sizeof(int), tile.data(), tile.size() * sizeof(K));
+    }
+  }
+  const int bytes = int(mine.size());
+  std::vector<int> counts(g.root() ? size_t(g.size) : 0), displs(counts.size());
+  LZB_MPI_CALL(MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, g.comm));
+  std::vector<char> all;
+  if (g.root()) {
+    size_t total = 0;
+    for (int r = 0; r < g.size; ++r) displs[size_t(r)] = int(total), total += size_t(counts[size_t(r)]);
+    all.resize(total);
+  }
+  LZB_MPI_CALL(MPI_Gatherv(mine.data(), bytes, MPI_BYTE, all.data(), counts.data(), displs.data(),
+                           MPI_BYTE, 0, g.comm));
+  if (!g.root()) return double(bytes);
+  for (size_t at = 0; at < all.size();) {
+    int t;
+    std::memcpy(&t, all.data() + at, sizeof(int));
+    const TileRect r = tiles.tile(t);
+    tile.resize(size_t(r.pixels()));
+    std::memcpy(tile.data(), all.data() + at + sizeof(int), tile.size() * sizeof(K));
+    at += sizeof(int) + tile.size() * sizeof(K);
+    size_t j = 0;
+    for (int y = r.y0; y < r.y1; ++y)
+      for (int x = r.x0; x < r.x1; ++x, ++j) {
+        const size_t i = fb.index(x, y);
+        const K nearest = Keys<K>::min(Keys<K>::of(fb, i), tile[j]);
+        Keys<K>::put(fb, i, nearest);
+      }
+  }
+  (void)k;
+  return 0.0;
+}
+
+template <class K>
+double composite(const Group& g, Framebuffer& fb, CompositeStrategy s) {
+  if (s == CompositeStrategy::kTiles) return tileSend<K>(g, fb);
+  const Rect touched = touchedRect(fb);
+  const Rect u = unionRect(g, touched);
+  if (u.empty()) return 0.0;  // nothing anywhere: the root's frame is already empty
+  switch (s) {
+    case CompositeStrategy::kReduce: return reduce<K>(g, fb, u);
+    case CompositeStrategy::kBinarySwap: return binarySwap<K>(g, fb, u);
+    default: return directSend<K>(g, fb, u, touched.empty() ? Rect{} : touched);
+  }
+}
+
+// One pixel with its colour, as compositeWithColour sends it.
 struct Pixel {
   float depth;
   Rgba8 color;
@@ -16,7 +369,7 @@ struct Pixel {
 };
 static_assert(sizeof(Pixel) == 16);
 
-void nearerOp(void* in, void* inout, int* len, MPI_Datatype*) {
+void nearerPixel(void* in, void* inout, int* len, MPI_Datatype*) {
   const Pixel* a = static_cast<const Pixel*>(in);
   Pixel* b = static_cast<Pixel*>(inout);
   for (int i = 0; i < *len; ++i)
@@ -25,7 +378,17 @@ void nearerOp(void* in, void* inout, int* len, MPI_Datatype*) {
 
 }  // namespace
 
-CompositeStats compositeAtRoot(const Group& g, Framebuffer& fb) {
+CompositeStats compositeAtRoot(const Group& g, Framebuffer& fb, CompositeStrategy strategy,
+                               bool wide) {
+  CompositeStats stats;
+  if (g.size == 1) return stats;
+  Stopwatch clock;
+  stats.bytesSent = wide ? composite<WideKey>(g, fb, strategy) : composite<uint64_t>(g, fb, strategy);
+  stats.seconds = clock.seconds();
+  return stats;
+}
+
+CompositeStats compositeWithColour(const Group& g, Framebuffer& fb) {
   CompositeStats stats;
   if (g.size == 1) return stats;
   Stopwatch clock;
@@ -33,16 +396,13 @@ CompositeStats compositeAtRoot(const Group& g, Framebuffer& fb) {
   std::vector<Pixel> mine(n), result(g.root() ? n : 0);
 #pragma omp parallel for schedule(static)
   for (size_t i = 0; i < n; ++i) mine[i] = Pixel{fb.depth[i], fb.color[i], fb.id[i]};
-
   MPI_Datatype type;
   LZB_MPI_CALL(MPI_Type_contiguous(sizeof(Pixel), MPI_BYTE, &type));
   LZB_MPI_CALL(MPI_Type_commit(&type));
   MPI_Op op;
-  LZB_MPI_CALL(MPI_Op_create(&nearerOp, /*commute=*/1, &op));
-  // Reduce in chunks: MPI counts are int, and chunks keep the temporary buffers bounded.
-  const size_t chunk = size_t(1) << 24;
-  for (size_t start = 0; start < n; start += chunk) {
-    const int count = int(std::min(chunk, n - start));
+  LZB_MPI_CALL(MPI_Op_create(&nearerPixel, /*commute=*/1, &op));
+  for (size_t start = 0; start < n; start += kChunk) {
+    const int count = int(std::min(kChunk, n - start));
     LZB_MPI_CALL(MPI_Reduce(mine.data() + start, g.root() ? result.data() + start : nullptr, count,
                             type, op, 0, g.comm));
   }
@@ -60,36 +420,6 @@ CompositeStats compositeAtRoot(const Group& g, Framebuffer& fb) {
   }
   stats.seconds = clock.seconds();
   return stats;
-}
-
-std::vector<std::string> gatherStrings(const Group& g, const std::string& mine) {
-  int length = int(mine.size());
-  std::vector<int> lengths(size_t(g.size)), offsets(size_t(g.size));
-  LZB_MPI_CALL(MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, g.comm));
-  int total = 0;
-  for (int r = 0; r < g.size; ++r) offsets[size_t(r)] = total, total += lengths[size_t(r)];
-  std::string all(g.root() ? size_t(total) : 0, '\0');
-  LZB_MPI_CALL(MPI_Gatherv(mine.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(),
-                           MPI_CHAR, 0, g.comm));
-  std::vector<std::string> out;
-  if (g.root())
-    for (int r = 0; r < g.size; ++r)
-      out.push_back(all.substr(size_t(offsets[size_t(r)]), size_t(lengths[size_t(r)])));
-  return out;
-}
-
-bool broadcastFlag(const Group& g, bool value) {
-  int v = value ? 1 : 0;
-  LZB_MPI_CALL(MPI_Bcast(&v, 1, MPI_INT, 0, g.comm));
-  return v != 0;
-}
-
-std::string broadcastString(const Group& g, const std::string& value) {
-  int length = int(value.size());
-  LZB_MPI_CALL(MPI_Bcast(&length, 1, MPI_INT, 0, g.comm));
-  std::string out = g.root() ? value : std::string(size_t(length), '\0');
-  LZB_MPI_CALL(MPI_Bcast(out.data(), length, MPI_CHAR, 0, g.comm));
-  return out;
 }
 
 }  // namespace lzb::mpi

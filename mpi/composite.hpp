@@ -1,27 +1,44 @@
 #pragma once
-// Depth compositing across ranks: the per-pixel minimum over (depth, id) of every rank's
-// framebuffer, gathered at the root. The operation is commutative and associative, so the result
-// does not depend on the number of ranks or the reduction order.
+// Depth compositing across ranks at the root: the per-pixel minimum of the compositing key of
+// src/core/depth_key.hpp, which is commutative and associative, so the result depends neither on
+// the number of ranks nor on the order of the reduction.
+//
+// Ranks send keys only (8 bytes a pixel, 16 above 2^32 expanded triangles): colour is shaded at
+// the root from the composited IDs (the frame driver does it). Every strategy sends only the
+// region that carries information, the way IceT skips empty pixels:
+//   reduce  MPI_Reduce with the key minimum over the union of the ranks' touched rectangles;
+//   bswap   binary swap over that union (halves exchanged pairwise, log2 P rounds; ranks past the
+//           largest power of two fold into it first), then the owned stripes gathered;
+//   direct  direct send: each rank sends its touched rectangle's part of every stripe of the
+//           union to the stripe's owner, which reduces it; then the stripes are gathered;
+//   tiles   each rank sends its touched 16 x 16 tiles straight to the root, which reduces them
+//           (cheapest where ranks own disjoint tiles).
+// Renderers whose colour is not a function of the IDs (rzb's Gaussian reconstruction) composite
+// whole 16-byte pixels with compositeWithColour.
 #include <string>
-#include <vector>
 
 #include "mpi/group.hpp"
 #include "src/core/framebuffer.hpp"
 
 namespace lzb::mpi {
 
+enum class CompositeStrategy { kReduce, kBinarySwap, kDirect, kTiles };
+
+// "reduce" | "bswap" | "direct" | "tiles"; throws InputError naming `field` otherwise.
+CompositeStrategy parseCompositeStrategy(const std::string& text, const std::string& field);
+std::string toString(CompositeStrategy s);
+
 struct CompositeStats {
   double seconds = 0.0;
   double bytesSent = 0.0;  // by this rank
 };
 
-// After the call, the root's fb holds the composite; other ranks' fb is unspecified.
-CompositeStats compositeAtRoot(const Group& g, Framebuffer& fb);
+// After the call, the root's fb holds the composite's depth and ID (colour untouched); other
+// ranks' fb is unspecified. wide: 128-bit keys (IDs of 2^32 and above).
+CompositeStats compositeAtRoot(const Group& g, Framebuffer& fb, CompositeStrategy strategy,
+                               bool wide);
 
-// Gathers one string per rank at the root (empty vector elsewhere).
-std::vector<std::string> gatherStrings(const Group& g, const std::string& mine);
-// Broadcasts a flag from the root so every rank takes the same branch after a root-only check.
-bool broadcastFlag(const Group& g, bool value);
-std::string broadcastString(const Group& g, const std::string& value);
+// The same with colour carried along (16-byte pixels through MPI_Reduce over the whole frame).
+CompositeStats compositeWithColour(const Group& g, Framebuffer& fb);
 
 }  // namespace lzb::mpi

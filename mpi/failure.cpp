@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "mpi/composite.hpp"
+#include "mpi/collectives.hpp"
 #include "src/core/error.hpp"
 
 namespace lzb::mpi {

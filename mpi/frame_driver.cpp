@@ -2,7 +2,9 @@
 
 #include <algorithm>
 
+#include "mpi/collectives.hpp"
 #include "mpi/composite.hpp"
+#include "src/core/shading.hpp"
 #include "src/core/system.hpp"
 #include "src/core/timer.hpp"
 
@@ -59,17 +61,26 @@ nlohmann::json gatherStats(const Group& g, const FrameStats& stats) {
   return gather(g, rankEntry(g.rank, stats));
 }
 
-nlohmann::json renderFrame(const Group& g, Renderer& renderer, const Camera& camera, int frame,
-                           Framebuffer& fb) {
+nlohmann::json FrameDriver::render(Renderer& renderer, const Camera& camera, int frame,
+                                   Framebuffer& fb) const {
+  const Group& g = g_;
   g.barrier();  // frame time starts when every rank is ready
   Stopwatch clock;
   fb.resize(camera.width(), camera.height());
   FrameStats stats;
   renderer.render(camera, frame, WorkShare{g.rank, g.size}, fb, stats);
-  const CompositeStats composite = compositeAtRoot(g, fb);
+  const bool fromIds = renderer.colourFromIds();
+  const CompositeStats composite =
+      fromIds ? compositeAtRoot(g, fb, strategy_, scene_.expandedTriangles() > 0xffffffffull)
+              : compositeWithColour(g, fb);
+  stats.addStage("composite", composite.seconds);
+  if (fromIds && g.root()) {
+    Stopwatch shading;
+    shadeFromIds(scene_, camera, fb);
+    stats.addStage("shade", shading.seconds());
+  }
   const double seconds = clock.seconds();
 
-  stats.addStage("composite", composite.seconds);
   nlohmann::json mine = rankEntry(g.rank, stats);
   mine["bytes_sent"] = composite.bytesSent;
   nlohmann::json out = gather(g, mine);

@@ -3,18 +3,32 @@
 // per-rank measurements into the frame's report entry.
 #include <nlohmann/json.hpp>
 
+#include "mpi/composite.hpp"
 #include "mpi/group.hpp"
 #include "src/core/renderer.hpp"
 
 namespace lzb::mpi {
 
-// Every rank calls this. On return the root's fb holds the final image and the returned JSON
-// holds: seconds (wall time of the frame at the root, compositing included), stages (each the
-// maximum over ranks, plus "composite"), counts (each rank's share summed over ranks, and the
+// Every rank calls render(). The ranks' depth and ID are composited at the root by `strategy`
+// (mpi/composite.hpp), then the root shades the colour from the IDs (shadeFromIds; a renderer
+// whose colour is not a function of the IDs composites whole pixels instead). On return the
+// root's fb holds the final image and the returned JSON holds: seconds (wall time of the frame
+// at the root, compositing and shading included), stages (each the maximum over ranks, plus
+// "composite" and the root's "shade"), counts (each rank's share summed over ranks, and the
 // root's shared figures), peak_memory_bytes (maximum over ranks), bytes_sent, and ranks[] with
 // every rank's own stages and counts. Elsewhere: null.
-nlohmann::json renderFrame(const Group& g, Renderer& renderer, const Camera& camera, int frame,
-                           Framebuffer& fb);
+class FrameDriver {
+ public:
+  FrameDriver(const Group& g, const Scene& scene, CompositeStrategy strategy)
+      : g_(g), scene_(scene), strategy_(strategy) {}
+  nlohmann::json render(Renderer& renderer, const Camera& camera, int frame, Framebuffer& fb) const;
+  const Group& group() const { return g_; }
+
+ private:
+  const Group& g_;
+  const Scene& scene_;
+  CompositeStrategy strategy_;
+};
 
 // The same gathering for stats outside a frame (a renderer's set-up): stages (maximum over
 // ranks), counts (summed, with the root's shared figures) and ranks[]. Null except at the root.

@@ -126,8 +126,10 @@ void LzbRenderer::render(const Camera& camera, int /*frame*/, const WorkShare& s
     renderPvl(f, fb);
     stats.addStage("pvl_render", clock.lap());
   }
-  shade(f, fb);
-  stats.addStage("shade", clock.lap());
+  if (f.farApart) {
+    combine(f, fb);
+    stats.addStage("combine", clock.lap());
+  }
   if (share.rank == 0 && lzb_.depthComplexityGrid > 0) {
     measureDepthComplexity(camera, stats);  // a diagnostic after the frame's work
     stats.addStage("diagnostics", clock.lap());
@@ -277,9 +279,8 @@ void LzbRenderer::renderPvl(Frame& f, Framebuffer& fb) {
   }
 }
 
-void LzbRenderer::shade(Frame& f, Framebuffer& fb) {
+void LzbRenderer::combine(Frame& f, Framebuffer& fb) {
   if (f.farApart) compositeNearer(fb, farPass_);
-  shadeFromIds(scene_, *f.camera, fb);
 }
 
 void LzbRenderer::measureDepthComplexity(const Camera& camera, FrameStats& stats) {

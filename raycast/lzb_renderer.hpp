@@ -9,7 +9,8 @@
 // final) and the PVL z-buffered on top of the near pass (near scene first, so on an exact depth
 // tie between two triangles the near one stays): by the native sparse z-buffer at the unfinished
 // pixels (--pvl-render native), or by OSMesa (gl: unclipped into the near pass's GL z-buffer, or
-// a pass of its own composited by (depth, ID) after a native near pass); colour by shadeFromIds.
+// a pass of its own composited by (depth, ID) after a native near pass); colour comes from the
+// IDs after compositing (the frame driver).
 //
 // Ranks: every rank renders the near pass (cheap) and so knows the unfinished pixels and keeps
 // the same plane state; each casts rays only in its screen tiles (tile % size == rank) and draws
@@ -77,8 +78,9 @@ class LzbRenderer : public Renderer {
   void castFarRays(Frame& f);
   // 6. The PVL by z-buffer on top of the near pass.
   void renderPvl(Frame& f, Framebuffer& fb);
-  // 7. The passes combined, colour from the IDs.
-  void shade(Frame& f, Framebuffer& fb);
+  // 7. A far pass drawn apart (naive rays, a GL PVL after a native near pass) joins fb by the
+  // compositing key.
+  void combine(Frame& f, Framebuffer& fb);
 
   // What the last frame did, for tests and studies.
   struct FrameDetail {

@@ -93,9 +93,6 @@ void RaycastRenderer::render(const Camera& camera, int frame, const WorkShare& s
   }
   stats.addStage("trace", clock.lap());
   stats.addCount("rays", double(rays));
-
-  shadeFromIds(scene_, camera, fb);
-  stats.addStage("shade", clock.lap());
 }
 
 }  // namespace lzb

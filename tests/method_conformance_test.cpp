@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "src/core/method.hpp"
+#include "src/core/shading.hpp"
 #include "src/core/system.hpp"
 #include "src/scene/load.hpp"
 #include "tests/cli_runner.hpp"
@@ -44,7 +45,8 @@ Camera frameCamera(const Scene& scene, int f) {
   return Camera(withClipPlanes(pathCamera(scene, base, f, 8), scene.bounds()), 96, 72);
 }
 
-// The frames one renderer gives as share `share`.
+// The frames one renderer gives as share `share` (depth and ID; colour too when it is not a
+// function of the IDs).
 std::vector<Framebuffer> renderFrames(Renderer& r, const Scene& scene, WorkShare share) {
   std::vector<Framebuffer> out;
   for (int f = 0; f < kFrames; ++f) {
@@ -55,6 +57,12 @@ std::vector<Framebuffer> renderFrames(Renderer& r, const Scene& scene, WorkShare
     out.push_back(std::move(fb));
   }
   return out;
+}
+
+// Colour from the IDs, as the frame driver gives it at the root after compositing.
+void shadeFrames(const Renderer& r, const Scene& scene, std::vector<Framebuffer>& frames) {
+  if (!r.colourFromIds()) return;
+  for (int f = 0; f < kFrames; ++f) shadeFromIds(scene, frameCamera(scene, f), frames[size_t(f)]);
 }
 
 void expectSameFrame(const Framebuffer& a, const Framebuffer& b, const std::string& what) {
@@ -76,7 +84,9 @@ TEST_P(MethodConformance, SameFramesForOneAndTwoThreads) {
     const Scene scene = loadScene(name, true);
     auto one = makeRenderer(GetParam(), scene, 1);
     auto two = makeRenderer(GetParam(), scene, 2);
-    const auto a = renderFrames(*one, scene, {}), b = renderFrames(*two, scene, {});
+    auto a = renderFrames(*one, scene, {}), b = renderFrames(*two, scene, {});
+    shadeFrames(*one, scene, a);
+    shadeFrames(*two, scene, b);
     for (int f = 0; f < kFrames; ++f) {
       EXPECT_GT(a[size_t(f)].coveredCount(), 0u) << name;
       expectSameFrame(a[size_t(f)], b[size_t(f)], name + " frame " + std::to_string(f));
@@ -87,16 +97,20 @@ TEST_P(MethodConformance, SameFramesForOneAndTwoThreads) {
 TEST_P(MethodConformance, CompositedSharesOfTwoAndThreeRanksEqualOneRank) {
   for (const std::string& name : scenes()) {
     const Scene scene = loadScene(name, true);
-    const auto single = renderFrames(*makeRenderer(GetParam(), scene, 2), scene, {});
+    auto alone = makeRenderer(GetParam(), scene, 2);
+    auto single = renderFrames(*alone, scene, {});
+    shadeFrames(*alone, scene, single);
     for (int size : {2, 3}) {
       std::vector<Framebuffer> composite;
       for (int rank = 0; rank < size; ++rank) {
         // One renderer per rank, as every rank of a run has its own.
-        const auto part = renderFrames(*makeRenderer(GetParam(), scene, 1), scene, {rank, size});
+        auto renderer = makeRenderer(GetParam(), scene, 1);
+        const auto part = renderFrames(*renderer, scene, {rank, size});
         for (int f = 0; f < kFrames; ++f) {
           if (rank == 0) composite.push_back(part[size_t(f)]);
           else compositeNearer(composite[size_t(f)], part[size_t(f)]);
         }
+        if (rank == size - 1) shadeFrames(*renderer, scene, composite);
       }
       for (int f = 0; f < kFrames; ++f)
         expectSameFrame(composite[size_t(f)], single[size_t(f)],

@@ -1,43 +1,94 @@
-// Compositing across 2 ranks equals compositing the same buffers in one process.
+// Compositing across ranks equals compositing the same buffers in one process, for every
+// strategy and both key widths.
 #include <gtest/gtest.h>
 
+#include "mpi/collectives.hpp"
 #include "mpi/composite.hpp"
 #include "mpi/group.hpp"
 
 namespace lzb {
 namespace {
 
-// Every rank can build every rank's buffer, so each can check the root's result locally.
-Framebuffer bufferOfRank(int rank, int w, int h) {
+// Every rank can build every rank's buffer, so each can check the root's result locally. Each
+// rank covers a window of its own (so touched rectangles differ) with holes and many exact ties.
+Framebuffer bufferOfRank(int rank, int w, int h, bool wideIds) {
   Framebuffer fb(w, h);
   uint64_t state = 1000 + uint64_t(rank);
-  for (size_t i = 0; i < fb.size(); ++i) {
-    state = state * 6364136223846793005ull + 1442695040888963407ull;
-    if ((state >> 60) < 6) continue;  // leave some pixels empty
-    const float depth = float((state >> 40) % 8);  // few distinct depths: many exact ties
-    fb.keepNearer(i, depth, Rgba8(state >> 8), (state >> 20) % 1000);
-  }
+  const int x0 = (rank * 7) % (w / 2), y0 = (rank * 5) % (h / 2);
+  for (int y = y0; y < h - rank; ++y)
+    for (int x = x0; x < w - 2 * rank; ++x) {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      if ((state >> 60) < 6) continue;                // leave some pixels empty
+      const float depth = float((state >> 40) % 8);  // few distinct depths: many exact ties
+      uint64_t id = (state >> 20) % 1000;
+      if (wideIds) id += uint64_t(1) << 40;
+      fb.keepNearer(fb.index(x, y), depth + 1.0f, Rgba8(state >> 8), id);
+    }
   return fb;
 }
 
-TEST(MpiComposite, EqualsSerialComposite) {
+Framebuffer serialComposite(int size, int w, int h, bool wideIds) {
+  Framebuffer expected = bufferOfRank(size - 1, w, h, wideIds);
+  for (int r = size - 2; r >= 0; --r) compositeNearer(expected, bufferOfRank(r, w, h, wideIds));
+  return expected;
+}
+
+class MpiComposite : public ::testing::TestWithParam<mpi::CompositeStrategy> {};
+
+TEST_P(MpiComposite, KeysEqualTheSerialComposite) {
   const mpi::Group g = mpi::Group::world();
-  ASSERT_GE(g.size, 2) << "run under mpiexec -n 2";
+  ASSERT_GE(g.size, 2) << "run under mpiexec -n 2 or more";
+  for (bool wide : {false, true}) {
+    for (auto [w, h] : {std::pair{97, 31}, std::pair{64, 64}, std::pair{5, 300}}) {
+      Framebuffer mine = bufferOfRank(g.rank, w, h, wide);
+      const bool covered = mine.coveredCount() > 0;
+      const mpi::CompositeStats stats = mpi::compositeAtRoot(g, mine, GetParam(), wide);
+      if (!g.root()) {
+        // A rank that drew something sends it.
+        if (covered) {
+          EXPECT_GT(stats.bytesSent, 0.0);
+        }
+        continue;
+      }
+      const Framebuffer expected = serialComposite(g.size, w, h, wide);
+      EXPECT_EQ(mine.id, expected.id) << mpi::toString(GetParam()) << " wide " << wide;
+      EXPECT_EQ(mine.depth, expected.depth) << mpi::toString(GetParam()) << " wide " << wide;
+    }
+  }
+}
+
+TEST_P(MpiComposite, NothingCoveredAnywhereStaysEmpty) {
+  const mpi::Group g = mpi::Group::world();
+  Framebuffer mine(40, 30);
+  mpi::compositeAtRoot(g, mine, GetParam(), false);
+  if (g.root()) {
+    EXPECT_EQ(mine.coveredCount(), 0u);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Strategies, MpiComposite,
+                         ::testing::Values(mpi::CompositeStrategy::kReduce,
+                                           mpi::CompositeStrategy::kBinarySwap,
+                                           mpi::CompositeStrategy::kDirect,
+                                           mpi::CompositeStrategy::kTiles),
+                         [](const auto& info) { return mpi::toString(info.param); });
+
+TEST(MpiCompositeWithColour, EqualsSerialComposite) {
+  const mpi::Group g = mpi::Group::world();
   const int w = 97, h = 31;
-  Framebuffer mine = bufferOfRank(g.rank, w, h);
-  const mpi::CompositeStats stats = mpi::compositeAtRoot(g, mine);
+  Framebuffer mine = bufferOfRank(g.rank, w, h, false);
+  const mpi::CompositeStats stats = mpi::compositeWithColour(g, mine);
   if (!g.root()) {
     EXPECT_DOUBLE_EQ(stats.bytesSent, double(w * h * 16));
     return;
   }
-  Framebuffer expected = bufferOfRank(g.size - 1, w, h);
-  for (int r = g.size - 2; r >= 0; --r) compositeNearer(expected, bufferOfRank(r, w, h));
+  const Framebuffer expected = serialComposite(g.size, w, h, false);
   EXPECT_EQ(mine.id, expected.id);
   EXPECT_EQ(mine.depth, expected.depth);
   EXPECT_EQ(mine.color, expected.color);
 }
 
-TEST(MpiComposite, GatherAndBroadcastStrings) {
+TEST(MpiCollectives, GatherAndBroadcastStrings) {
   const mpi::Group g = mpi::Group::world();
   const auto all = mpi::gatherStrings(g, "rank" + std::to_string(g.rank));
   if (g.root()) {

@@ -150,7 +150,7 @@ TEST_F(SubpixelField, RzbAtD1ShowsAVisibleTriangleOnAtLeast95PercentOfCoveredPix
   const Camera cam = camera();
   RaycastRenderer raycast(*scene_, options("raycast"));
   rzb::RzbRenderer r(*scene_, options("rzb"), rzb::RzbParams{});
-  const Witnessed w = witnessedAccuracy(render(r, cam), testing_util::renderReference(raycast, cam),
+  const Witnessed w = witnessedAccuracy(render(r, cam), testing_util::renderReference(raycast, *scene_, cam),
                                         *scene_, raycast.embreeScene(), cam);
   std::printf("[ subpixel ] rzb d=1 320x240: report %.4f, with witnesses %.4f of %zu covered\n",
               w.report.correctRateCovered, w.correctRate, w.report.coveredPixels);
@@ -162,7 +162,7 @@ TEST_F(SubpixelField, ZBufferShowsAVisibleTriangleOnAtLeast995PermilleOfCoveredP
   RaycastRenderer raycast(*scene_, options("raycast"));
   ZBufferRenderer zbuffer(*scene_, options("zbuffer"));
   const Witnessed w = witnessedAccuracy(render(zbuffer, cam),
-                                        testing_util::renderReference(raycast, cam), *scene_,
+                                        testing_util::renderReference(raycast, *scene_, cam), *scene_,
                                         raycast.embreeScene(), cam);
   std::printf("[ subpixel ] zbuffer vs raycast 320x240: report %.4f, with witnesses %.4f of %zu "
               "covered\n", w.report.correctRateCovered, w.correctRate, w.report.coveredPixels);
@@ -180,7 +180,7 @@ TEST_F(SubpixelField, AShiftedImageIsMostlyWrongEvenWithWitnesses) {
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x)
       shifted.id[shifted.index(x, y)] = image.id[image.index(std::max(x - 2, 0), y)];
-  const Witnessed w = witnessedAccuracy(shifted, testing_util::renderReference(raycast, cam),
+  const Witnessed w = witnessedAccuracy(shifted, testing_util::renderReference(raycast, *scene_, cam),
                                         *scene_, raycast.embreeScene(), cam);
   std::printf("[ subpixel ] zbuffer shifted by 2 px: report %.4f, with witnesses %.4f\n",
               w.report.correctRateCovered, w.correctRate);

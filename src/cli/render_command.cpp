@@ -41,6 +41,10 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
              "(exact methods only; width and height at most 4096)");
   c.add_option("--out,-o", a.out, "output folder for frame_NNNN.png/.exr and report.json")
       ->capture_default_str();
+  c.add_option("--composite", a.composite,
+               "how ranks composite at the root: reduce (MPI_Reduce of keys) | bswap (binary "
+               "swap) | direct (direct send of stripes) | tiles (touched tiles to the root)")
+      ->capture_default_str();
   c.add_option("--threads,-t", a.threads, "threads per rank (0: the cores this rank owns)")
       ->capture_default_str();
   c.add_option("--seed", a.seed, "seed of all randomness (runs repeat exactly)")->capture_default_str();
@@ -77,6 +81,7 @@ void validate(const RenderArgs& a) {
   checkSubsampleSizes(a, a.width, a.height);
   require(a.threads >= 0 && a.threads <= 1024, "--threads", "must be in [0, 1024]");
   require(a.frames >= 1 && a.frames <= 1000000, "--frames", "must be in [1, 1000000]");
+  mpi::parseCompositeStrategy(a.composite, "--composite");
   require(a.fov >= 0.0 && a.fov < 180.0, "--fov", "must be in (0, 180) degrees");
   require(a.nearPlane >= 0.0, "--near", "must be > 0");
   require(a.farPlane >= 0.0, "--far", "must be > 0");
@@ -107,24 +112,26 @@ void createOutput(const std::string& out) {
 // Renders `exact` at the 4x4 sub-samples of `camera` (every rank its share) and reduces them with
 // its centre render `centres` at the root; elsewhere returns an empty frame. The 4W x 4H image
 // (16 bytes per sub-sample) is freed on return.
-ReferenceFrame renderSubsamples(const mpi::Group& g, Renderer& exact, const Camera& camera,
-                                int f, const Framebuffer& centres, double& seconds) {
+ReferenceFrame renderSubsamples(const mpi::FrameDriver& driver, Renderer& exact,
+                                const Camera& camera, int f, const Framebuffer& centres,
+                                double& seconds) {
   Framebuffer fine;
-  const nlohmann::json stats = mpi::renderFrame(g, exact, subsampleCamera(camera), f, fine);
-  if (!g.root()) return {};
+  const nlohmann::json stats = driver.render(exact, subsampleCamera(camera), f, fine);
+  if (!driver.group().root()) return {};
   seconds = stats["seconds"].get<double>();
   return reduceReference(centres, fine);
 }
 
 // Renders the reference of frame f (centres, then sub-samples) and adds the test image's
 // accuracy against it to the frame's entry at the root.
-void addAccuracy(const mpi::Group& g, Renderer& reference, const Camera& camera, int f,
+void addAccuracy(const mpi::FrameDriver& driver, Renderer& reference, const Camera& camera, int f,
                  const Framebuffer& image, nlohmann::json& frame) {
   Framebuffer centres;
-  const nlohmann::json stats = mpi::renderFrame(g, reference, camera, f, centres);
+  const nlohmann::json stats = driver.render(reference, camera, f, centres);
   double subsampleSeconds = 0.0;
-  const ReferenceFrame exact = renderSubsamples(g, reference, camera, f, centres, subsampleSeconds);
-  if (!g.root()) return;
+  const ReferenceFrame exact =
+      renderSubsamples(driver, reference, camera, f, centres, subsampleSeconds);
+  if (!driver.group().root()) return;
   frame["accuracy"] = toJson(compare(image, exact));
   frame["reference_seconds"] = stats["seconds"];
   frame["reference_subsample_seconds"] = subsampleSeconds;
@@ -134,20 +141,21 @@ void addAccuracy(const mpi::Group& g, Renderer& reference, const Camera& camera,
 void renderFrames(const RenderArgs& a, const mpi::Group& g, const Scene& scene, const CameraSpec& base,
                   int width, int height, Renderer& renderer, Renderer* reference, Report& report,
                   bool talk) {
+  const mpi::FrameDriver driver(g, scene, mpi::parseCompositeStrategy(a.composite, "--composite"));
   Progress progress("rendering " + std::to_string(a.frames) + " frames", uint64_t(a.frames),
                     talk && a.frames > 1);
   for (int f = 0; f < a.frames; ++f) {
     const CameraSpec spec = withClipPlanes(pathCamera(scene, base, f, a.frames), scene.bounds());
     const Camera camera(spec, width, height, "camera (frame " + std::to_string(f) + ")");
     Framebuffer image;
-    nlohmann::json frame = mpi::renderFrame(g, renderer, camera, f, image);
+    nlohmann::json frame = driver.render(renderer, camera, f, image);
     ReferenceFrame own;  // this frame's own sub-samples, with --subsamples
     if (a.subsamples) {
       double seconds = 0.0;
-      own = renderSubsamples(g, renderer, camera, f, image, seconds);
+      own = renderSubsamples(driver, renderer, camera, f, image, seconds);
       if (g.root()) frame["subsample_seconds"] = seconds;
     }
-    if (reference) addAccuracy(g, *reference, camera, f, image, frame);
+    if (reference) addAccuracy(driver, *reference, camera, f, image, frame);
     if (g.root()) {
       writeFrame(image, a.out, f, a.subsamples ? &own : nullptr);
       report.addFrame(f, camera, frame, image);

@@ -14,8 +14,8 @@
 namespace lzb {
 
 // Which part of a frame's work this rank does: rank r of size ranks. A method must split its
-// work so that compositing every rank's framebuffer (compositeNearer) gives the same image as
-// size == 1, and must never key randomness by rank or thread.
+// work so that compositing every rank's framebuffer by the compositing key (depth_key.hpp) gives
+// the same image as size == 1, and must never key randomness by rank or thread.
 struct WorkShare {
   int rank = 0;
   int size = 1;
@@ -56,10 +56,13 @@ class Renderer {
   virtual std::string name() const = 0;
   // One sentence for the report: how this method splits a frame across ranks.
   virtual std::string decomposition() const = 0;
-  // Renders this rank's share of frame `frame` into fb (already sized and cleared), with colour
-  // filled in (see shadeFromIds for the exact methods).
+  // Renders the depth and ID of this rank's share of frame `frame` into fb (already sized and
+  // cleared). Colour is shaded from the IDs after compositing, once, at the root (shadeFromIds,
+  // src/core/shading.hpp); a renderer whose colour is not a function of the IDs fills it in too
+  // and says so with colourFromIds().
   virtual void render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
                       FrameStats& stats) = 0;
+  virtual bool colourFromIds() const { return true; }
   // What building the method's structures took (stages) and made (shared counts), reported once.
   virtual FrameStats setupStats() const { return {}; }
 };

@@ -65,8 +65,10 @@ void RzbRenderer::render(const Camera& camera, int frame, const WorkShare& share
   stats.addStage("splat", clock.lap());
   resolve(f, fb);
   stats.addStage("resolve", clock.lap());
-  shade(f, fb);
-  stats.addStage("shade", clock.lap());
+  if (params_.reconstruct == Reconstruct::kGauss) {
+    shadeGauss(f, fb);
+    stats.addStage("shade", clock.lap());
+  }
   countFrame(f, stats);
 }
 
@@ -185,9 +187,9 @@ void RzbRenderer::resolve(Frame& f, Framebuffer& fb) {
   if (f.rastered) compositeNearer(fb, f.raster);
 }
 
-void RzbRenderer::shade(Frame& f, Framebuffer& fb) {
-  shadeFromIds(scene_, *f.camera, fb);
-  if (params_.reconstruct != Reconstruct::kGauss || f.mine.empty()) return;
+void RzbRenderer::shadeGauss(Frame& f, Framebuffer& fb) {
+  shadeFromIds(scene_, *f.camera, fb);  // pixels no visible sample reaches keep this colour
+  if (f.mine.empty()) return;
   std::vector<uint64_t> accum;
   f.gauss = gaussAccumulate(f.jobs, f.sel.boxes, f.stream, f.setup, params_.dropBackfaces,
                             fb.depth, scene_, accum, options_.threads);

@@ -3,8 +3,8 @@
 // triangles and the sample cache. Per frame:
 //   select boxes (eps, or --eps auto) -> deal boxes to ranks by cost -> fallback boxes through
 //   OSMesa -> sample boxes splatted (drawn fresh, or from the cache) -> keys resolved to depth and
-//   ID -> composited with the fallback by (depth, id) -> coloured by shadeFromIds (pixel, splat)
-//   or by the Gaussian average of visible samples (gauss).
+//   ID -> composited with the fallback by (depth, id); colour comes from the IDs after compositing
+//   (pixel, splat), or from the Gaussian average of visible samples (gauss, done here).
 // The same seed gives the same image for any thread count and any number of ranks.
 #include <memory>
 #include <string>
@@ -65,8 +65,10 @@ class RzbRenderer : public Renderer {
   void splat(Frame& f);
   // 6. Keys to depth and ID, composited with the fallback.
   void resolve(Frame& f, Framebuffer& fb);
-  // 7. Colour: the one shading rule from the IDs, or the Gaussian average of visible samples.
-  void shade(Frame& f, Framebuffer& fb);
+  // 7. gauss only: colour as the Gaussian average of visible samples (otherwise colour comes from
+  // the IDs after compositing, as for every method).
+  void shadeGauss(Frame& f, Framebuffer& fb);
+  bool colourFromIds() const override { return params_.reconstruct != Reconstruct::kGauss; }
 
   const RzbParams& params() const { return params_; }
   // The sample trees, also for dynamic updates between frames (SampleScene's API).

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "src/core/error.hpp"
+#include "src/core/shading.hpp"
 #include "src/core/timer.hpp"
 #include "src/image/metrics.hpp"
 #include "src/rzb/rzb_test_util.hpp"
@@ -211,7 +212,8 @@ TEST(RzbRenderer, GaussReconstructionIsCloseToTheZBuffer) {
   const Camera camera = sceneCamera(scene, 120, 90);
   RzbParams p = pointHeavy();
   RzbRenderer pixel(scene, options(2), p);
-  const Framebuffer pf = renderWith(pixel, camera);
+  Framebuffer pf = renderWith(pixel, camera);
+  shadeFromIds(scene, camera, pf);  // as the frame driver does for colour from the IDs
   p.reconstruct = Reconstruct::kGauss;
   RzbRenderer r(scene, options(2), p);
   FrameStats stats;

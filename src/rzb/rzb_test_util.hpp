@@ -63,7 +63,7 @@ inline bool sameImage(const Framebuffer& a, const Framebuffer& b) {
 // The exact z-buffer's reference of `camera`: centres and 4x4 sub-samples (src/image/reference.hpp).
 inline ReferenceFrame zbufferReference(const Scene& scene, const Camera& camera) {
   ZBufferRenderer z(scene, RenderOptions{});
-  return lzb::testing_util::renderReference(z, camera);
+  return lzb::testing_util::renderReference(z, scene, camera);
 }
 
 // The papers' correct-pixel rate measured closely for sub-pixel triangles: a pixel is correct

@@ -31,12 +31,9 @@ void ZBufferRenderer::render(const Camera& camera, int /*frame*/, const WorkShar
   rasterizer_.end(fb);
   const RasterCounts& raster = rasterizer_.counts();
   const double drawSeconds = clock.lap() - raster.uploadSeconds - raster.readbackSeconds;
-
-  shadeFromIds(scene_, camera, fb);
   stats.addStage("upload", raster.uploadSeconds);
   stats.addStage("draw", drawSeconds);
   stats.addStage("readback", raster.readbackSeconds);
-  stats.addStage("shade", clock.lap());
   stats.addCount("triangles_drawn", double(counts.triangles));
   stats.addCount("draw_items", double(counts.items));
   stats.addCount("draw_items_culled", double(counts.culled));
