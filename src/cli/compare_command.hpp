@@ -1,5 +1,6 @@
 #pragma once
-// `lzb compare A.exr B.exr`: accuracy of A against the reference B, printed as JSON.
+// `lzb compare A.exr B.exr [--scene SCENE]`: accuracy of A against the reference B, printed as
+// JSON; with --scene, judged with the ray witness exactly as `lzb render --reference` judges.
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -9,7 +10,8 @@
 namespace lzb {
 
 struct CompareArgs {
-  std::string test, reference;
+  std::string test, reference, scene;
+  int threads = 0;
 };
 
 void addCompareOptions(CLI::App& command, CompareArgs& args);

@@ -37,7 +37,8 @@ int main(int argc, char** argv) {
   addInfoOptions(*app.add_subcommand("info", "triangle counts, bounds, octree statistics, memory"),
                  info);
   lzb::CompareArgs compare;
-  addCompareOptions(*app.add_subcommand("compare", "accuracy of image A against reference B (JSON)"),
+  addCompareOptions(*app.add_subcommand("compare", "accuracy of image A against reference B (JSON); "
+                                                    "with --scene, witnessed by rays as in the report"),
                     compare);
 
   try {

@@ -9,6 +9,7 @@
 #include "mpi/composite.hpp"
 #include "mpi/failure.hpp"
 #include "mpi/frame_driver.hpp"
+#include "raycast/ray_witness.hpp"
 #include "src/cli/methods.hpp"
 #include "src/cli/report.hpp"
 #include "src/core/atomic_file.hpp"
@@ -32,8 +33,10 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
   c.add_option("--method,-m", a.method, "rendering method: " + methodNames())->capture_default_str();
   c.add_option("--reference", a.reference,
                "also render this exact method, at the pixel centres and at 4x4 sub-samples per "
-               "pixel, and report accuracy against it (a pixel is correct when its triangle is "
-               "one the reference sees at the pixel's centre or one of its 16 sub-samples; "
+               "pixel, and report accuracy against it: a pixel is correct when its triangle is "
+               "one the reference sees at the pixel's centre or one of its 16 sub-samples, or "
+               "when a ray through the pixel sees that triangle first (the ray witness; it "
+               "traces the raycast reference's Embree scene, else one built at set-up; "
                "src/image/README.md): " + methodNames(true) + "; width and height at most 4096");
   c.add_flag("--subsamples", a.subsamples,
              "also render each frame at 4x4 sub-samples per pixel and store their triangle IDs "
@@ -122,24 +125,33 @@ ReferenceFrame renderSubsamples(const mpi::FrameDriver& driver, Renderer& exact,
   return reduceReference(centres, fine);
 }
 
+// What a run's frames are judged against: an exact method and, at the root, the ray witness.
+struct Judge {
+  Renderer* reference = nullptr;
+  std::unique_ptr<WitnessScene> witness;  // the root's only: it alone compares
+};
+
 // Renders the reference of frame f (centres, then sub-samples) and adds the test image's
-// accuracy against it to the frame's entry at the root.
-void addAccuracy(const mpi::FrameDriver& driver, Renderer& reference, const Camera& camera, int f,
+// accuracy against it, witnessed by rays, to the frame's entry at the root.
+void addAccuracy(const mpi::FrameDriver& driver, const Judge& judge, const Camera& camera, int f,
                  const Framebuffer& image, nlohmann::json& frame) {
   Framebuffer centres;
-  const nlohmann::json stats = driver.render(reference, camera, f, centres);
+  const nlohmann::json stats = driver.render(*judge.reference, camera, f, centres);
   double subsampleSeconds = 0.0;
   const ReferenceFrame exact =
-      renderSubsamples(driver, reference, camera, f, centres, subsampleSeconds);
+      renderSubsamples(driver, *judge.reference, camera, f, centres, subsampleSeconds);
   if (!driver.group().root()) return;
-  frame["accuracy"] = toJson(compare(image, exact));
+  Stopwatch clock;
+  const RayWitness witness = judge.witness->witness(camera);
+  frame["accuracy"] = toJson(compare(image, exact, &witness));
+  frame["accuracy_seconds"] = clock.seconds();
   frame["reference_seconds"] = stats["seconds"];
   frame["reference_subsample_seconds"] = subsampleSeconds;
 }
 
 // The frame loop: every rank renders its share of each frame; the root writes images and records.
 void renderFrames(const RenderArgs& a, const mpi::Group& g, const Scene& scene, const CameraSpec& base,
-                  int width, int height, Renderer& renderer, Renderer* reference, Report& report,
+                  int width, int height, Renderer& renderer, const Judge& judge, Report& report,
                   bool talk) {
   const mpi::FrameDriver driver(g, scene, mpi::parseCompositeStrategy(a.composite, "--composite"));
   Progress progress("rendering " + std::to_string(a.frames) + " frames", uint64_t(a.frames),
@@ -155,9 +167,10 @@ void renderFrames(const RenderArgs& a, const mpi::Group& g, const Scene& scene, 
       own = renderSubsamples(driver, renderer, camera, f, image, seconds);
       if (g.root()) frame["subsample_seconds"] = seconds;
     }
-    if (reference) addAccuracy(driver, *reference, camera, f, image, frame);
+    if (judge.reference) addAccuracy(driver, judge, camera, f, image, frame);
     if (g.root()) {
-      writeFrame(image, a.out, f, a.subsamples ? &own : nullptr);
+      const FrameOrigin origin{camera, scene.expandedTriangles()};
+      writeFrame(image, a.out, f, a.subsamples ? &own : nullptr, &origin);
       report.addFrame(f, camera, frame, image);
     }
     progress.add();
@@ -177,6 +190,7 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
   int width = 0, height = 0;
   CameraSpec base;
   std::unique_ptr<Renderer> renderer, reference;
+  Judge judge;
   double loadSeconds = 0.0, setupSeconds = 0.0;
   mpi::agree(g, [&] {
     validate(a);
@@ -206,7 +220,12 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
 
     Stopwatch setupClock;
     renderer = methodNamed(a.method, "--method").create(scene, options);
-    if (!a.reference.empty()) reference = methodNamed(a.reference, "--reference").create(scene, options);
+    if (!a.reference.empty()) {
+      reference = methodNamed(a.reference, "--reference").create(scene, options);
+      judge.reference = reference.get();
+      // Built once here (set-up time), unless the raycast reference lends its Embree scene.
+      if (g.root()) judge.witness = std::make_unique<WitnessScene>(scene, reference.get(), options.threads);
+    }
     setupSeconds = setupClock.seconds();
   });
   const nlohmann::json methodSetup = mpi::gatherStats(g, renderer->setupStats());
@@ -217,8 +236,9 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
   Report report(a, options, g, scene, commandLine);
   report.setMethod(*renderer, reference.get());
   report.setSetup(loadSeconds, setupSeconds, methodSetup);
+  if (judge.witness) report.setWitness(*judge.witness);
   try {
-    renderFrames(a, g, scene, base, width, height, *renderer, reference.get(), report, talk);
+    renderFrames(a, g, scene, base, width, height, *renderer, judge, report, talk);
     if (g.root()) {
       report.setTotal(total.seconds());
       report.write(fs::path(a.out) / "report.json");

@@ -65,6 +65,13 @@ void Report::setSetup(double loadSeconds, double setupSeconds, nlohmann::json me
   json_["setup"] = std::move(methodSetup);
 }
 
+void Report::setWitness(const WitnessScene& witness) {
+  json_["witness"] = {{"rule", RayWitness::kName},
+                      {"embree_scene", witness.sharedWithReference() ? "the raycast reference's"
+                                                                     : "built for the witness"},
+                      {"build_seconds", witness.buildSeconds()}};
+}
+
 void Report::addFrame(int frame, const Camera& camera, nlohmann::json entry, const Framebuffer& image) {
   json_["width"] = camera.width();
   json_["height"] = camera.height();

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "mpi/group.hpp"
+#include "raycast/ray_witness.hpp"
 #include "src/cli/render_command.hpp"
 #include "src/core/renderer.hpp"
 
@@ -22,6 +23,9 @@ class Report {
   void setMethod(const Renderer& method, const Renderer* reference);
   // Load and set-up wall times, and the method's own set-up figures (mpi::gatherStats).
   void setSetup(double loadSeconds, double setupSeconds, nlohmann::json methodSetup);
+  // How accuracy is witnessed: the rule and whose Embree scene it traces (its build is part of
+  // setup_seconds when it is its own).
+  void setWitness(const WitnessScene& witness);
   void addFrame(int frame, const Camera& camera, nlohmann::json entry, const Framebuffer& image);
   void setTotal(double seconds);
   void write(const std::filesystem::path& path) const;  // atomically

@@ -221,7 +221,97 @@ class ExrReader {
   std::vector<unsigned char> block_;
 };
 
-void writeExrChannels(const Framebuffer& fb, const ReferenceFrame* sub,
+// The header attributes of FrameOrigin (frame_io.hpp).
+const TypeDesc kVec3d(TypeDesc::DOUBLE, TypeDesc::VEC3);
+constexpr const char* kPositionAttr = "lzb.camera.position";
+constexpr const char* kLookAtAttr = "lzb.camera.look_at";
+constexpr const char* kUpAttr = "lzb.camera.up";
+constexpr const char* kFovAttr = "lzb.camera.fov";
+constexpr const char* kNearAttr = "lzb.camera.near";
+constexpr const char* kFarAttr = "lzb.camera.far";
+constexpr const char* kWidthAttr = "lzb.camera.width";
+constexpr const char* kHeightAttr = "lzb.camera.height";
+constexpr const char* kTrianglesAttr = "lzb.scene.triangles";
+constexpr const char* kOriginAttrs[] = {kPositionAttr, kLookAtAttr, kUpAttr,    kFovAttr,
+                                        kNearAttr,     kFarAttr,    kWidthAttr, kHeightAttr,
+                                        kTrianglesAttr};
+
+void putVec3(ImageSpec& spec, const char* name, const glm::dvec3& v) {
+  const double xyz[3] = {v.x, v.y, v.z};
+  spec.attribute(name, kVec3d, xyz);
+}
+
+void putOrigin(ImageSpec& spec, const FrameOrigin& origin) {
+  const CameraSpec& c = origin.camera.spec();
+  putVec3(spec, kPositionAttr, c.position);
+  putVec3(spec, kLookAtAttr, c.lookAt);
+  putVec3(spec, kUpAttr, c.up);
+  spec.attribute(kFovAttr, TypeDesc::DOUBLE, &c.fovyDegrees);
+  spec.attribute(kNearAttr, TypeDesc::DOUBLE, &c.nearPlane);
+  spec.attribute(kFarAttr, TypeDesc::DOUBLE, &c.farPlane);
+  spec.attribute(kWidthAttr, origin.camera.width());
+  spec.attribute(kHeightAttr, origin.camera.height());
+  // A string: uint64 counts beyond 2^53 stay exact.
+  spec.attribute(kTrianglesAttr, std::to_string(origin.sceneTriangles));
+}
+
+// The origin's camera must be the frame's: its size is the image's.
+void checkOrigin(const Framebuffer& fb, const FrameOrigin* origin, const std::filesystem::path& path) {
+  require(!origin || (origin->camera.width() == fb.width && origin->camera.height() == fb.height),
+          path.string(), "the camera's size differs from the frame's");
+}
+
+// The attribute `name` of `type` (semantics aside: OpenEXR reads a v3d back as a vector).
+const OIIO::ParamValue& attributeOf(const ImageSpec& spec, const std::filesystem::path& path,
+                                    const char* name, TypeDesc type) {
+  const OIIO::ParamValue* p = spec.find_attribute(name);
+  if (!p) fail(path, "missing header attribute \"" + std::string(name) + "\"");
+  const TypeDesc t = p->type();
+  if (t.basetype != type.basetype || t.aggregate != type.aggregate || t.arraylen != type.arraylen)
+    fail(path, "header attribute \"" + std::string(name) + "\" has type " + t.c_str() +
+                   ", expected " + type.c_str());
+  return *p;
+}
+
+glm::dvec3 getVec3(const ImageSpec& spec, const std::filesystem::path& path, const char* name) {
+  const double* xyz = static_cast<const double*>(attributeOf(spec, path, name, kVec3d).data());
+  return {xyz[0], xyz[1], xyz[2]};
+}
+
+double getDouble(const ImageSpec& spec, const std::filesystem::path& path, const char* name) {
+  return *static_cast<const double*>(attributeOf(spec, path, name, TypeDesc::DOUBLE).data());
+}
+
+int getInt(const ImageSpec& spec, const std::filesystem::path& path, const char* name) {
+  return *static_cast<const int*>(attributeOf(spec, path, name, TypeDesc::INT).data());
+}
+
+uint64_t getCount(const ImageSpec& spec, const std::filesystem::path& path, const char* name) {
+  const OIIO::ParamValue& p = attributeOf(spec, path, name, TypeDesc::STRING);
+  const std::string text = p.get_string();
+  const bool digits = !text.empty() && text.size() <= 20 &&
+                      text.find_first_not_of("0123456789") == std::string::npos;
+  if (!digits) fail(path, "header attribute \"" + std::string(name) + "\" is not a count: " + text);
+  return std::stoull(text);
+}
+
+FrameOrigin originOf(const ImageSpec& spec, const std::filesystem::path& path) {
+  CameraSpec c;
+  c.position = getVec3(spec, path, kPositionAttr);
+  c.lookAt = getVec3(spec, path, kLookAtAttr);
+  c.up = getVec3(spec, path, kUpAttr);
+  c.fovyDegrees = getDouble(spec, path, kFovAttr);
+  c.nearPlane = getDouble(spec, path, kNearAttr);
+  c.farPlane = getDouble(spec, path, kFarAttr);
+  const int width = getInt(spec, path, kWidthAttr), height = getInt(spec, path, kHeightAttr);
+  if (width != spec.width || height != spec.height)
+    fail(path, "header camera is " + std::to_string(width) + "x" + std::to_string(height) +
+                   ", the image " + std::to_string(spec.width) + "x" + std::to_string(spec.height));
+  return {Camera(c, width, height, path.string() + ": header camera"),
+          getCount(spec, path, kTrianglesAttr)};
+}
+
+void writeExrChannels(const Framebuffer& fb, const ReferenceFrame* sub, const FrameOrigin* origin,
                       const std::filesystem::path& path) {
   const std::vector<ExrChannel> channels = frameChannels(sub != nullptr);
   ImageSpec spec(fb.width, fb.height, int(channels.size()), TypeDesc::HALF);
@@ -236,6 +326,7 @@ void writeExrChannels(const Framebuffer& fb, const ReferenceFrame* sub,
   spec.attribute("compression", "zip");
   // No capture date: identical frames must give identical files (the 2-rank test compares bytes).
   spec.attribute("DateTime", "");
+  if (origin) putOrigin(spec, *origin);
   const auto fill = [&](int y0, int y1, std::vector<unsigned char>& block) {
     RowPacker row(block);
     for (size_t i = fb.index(0, y0); i < fb.index(0, y1); ++i) packPixel(fb, sub, i, row);
@@ -261,15 +352,17 @@ std::string frameStem(int frame) {
   return buf;
 }
 
-void writeExr(const Framebuffer& fb, const std::filesystem::path& path) {
-  writeExrChannels(fb, nullptr, path);
+void writeExr(const Framebuffer& fb, const std::filesystem::path& path, const FrameOrigin* origin) {
+  checkOrigin(fb, origin, path);
+  writeExrChannels(fb, nullptr, origin, path);
 }
 
 void writeExr(const Framebuffer& fb, const ReferenceFrame& subsamples,
-              const std::filesystem::path& path) {
+              const std::filesystem::path& path, const FrameOrigin* origin) {
   require(subsamples.width == fb.width && subsamples.height == fb.height, path.string(),
           "the sub-sample data's size differs from the frame's");
-  writeExrChannels(fb, &subsamples, path);
+  checkOrigin(fb, origin, path);
+  writeExrChannels(fb, &subsamples, origin, path);
 }
 
 void writePng(const Framebuffer& fb, const std::filesystem::path& path) {
@@ -288,14 +381,14 @@ void writePng(const Framebuffer& fb, const std::filesystem::path& path) {
 }
 
 void writeFrame(const Framebuffer& fb, const std::filesystem::path& dir, int frame,
-                const ReferenceFrame* subsamples) {
+                const ReferenceFrame* subsamples, const FrameOrigin* origin) {
   require(fb.width > 0 && fb.height > 0, dir.string(), "cannot write an empty frame");
   require(frame >= 0, dir.string(), "frame number " + std::to_string(frame) + " is negative");
   const std::string stem = frameStem(frame);
   if (subsamples) {
-    writeExr(fb, *subsamples, dir / (stem + ".exr"));
+    writeExr(fb, *subsamples, dir / (stem + ".exr"), origin);
   } else {
-    writeExr(fb, dir / (stem + ".exr"));
+    writeExr(fb, dir / (stem + ".exr"), origin);
   }
   writePng(fb, dir / (stem + ".png"));
 }
@@ -339,6 +432,14 @@ ReferenceFrame readReferenceExr(const std::filesystem::path& path) {
     for (size_t c = 0; c < 3; ++c) ref.boxColor[i][c] = unitToBoxMean(in.asFloat(box[c], i));
   });
   return ref;
+}
+
+std::optional<FrameOrigin> readFrameOrigin(const std::filesystem::path& path) {
+  const ExrReader in(path);
+  const ImageSpec& spec = in.spec();
+  for (const char* name : kOriginAttrs)
+    if (spec.find_attribute(name)) return originOf(spec, path);
+  return std::nullopt;
 }
 
 }  // namespace lzb

@@ -14,10 +14,18 @@
 //                 R.aa G.aa B.aa  float: the box-filtered colour (mean of the 16 sub-samples'
 //                             bytes) / 255. Float, not half: those means step by 1/16 of a byte,
 //                             finer than half holds above 0.5, and read back exactly from float.
+// Header attributes (`lzb render` writes them for every frame; FrameOrigin):
+//                 lzb.camera.position, .look_at, .up  double[3] (OpenEXR v3d)
+//                 lzb.camera.fov, .near, .far         double (degrees; view depths)
+//                 lzb.camera.width, .height           int (the image's size)
+//                 lzb.scene.triangles                 string: the scene's expanded triangle count
 // NNNN is the frame number, zero-padded to at least four digits.
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 
+#include "src/core/camera.hpp"
 #include "src/core/framebuffer.hpp"
 #include "src/image/reference.hpp"
 
@@ -29,21 +37,31 @@ inline constexpr const char* kBoxColorChannels[3] = {"R.aa", "G.aa", "B.aa"};
 std::string subsampleIdLowChannel(int k);   // "sub.ID.k"
 std::string subsampleIdHighChannel(int k);  // "sub.ID.hi.k"
 
+// How a frame was made, kept exactly in its EXR header, so that `lzb compare --scene` traces the
+// frame's own rays and refuses a reference of another view or another scene.
+struct FrameOrigin {
+  Camera camera;                // its spec (position, look-at, up, fov, near, far) and size
+  uint64_t sceneTriangles = 0;  // Scene::expandedTriangles() of the scene it shows
+};
+
 // "frame_0007" for frame 7.
 std::string frameStem(int frame);
 
 // Writes dir/frame_NNNN.exr (with the sub-sample channels when `subsamples` is given: fb is then
-// the reference's centre render) then dir/frame_NNNN.png, each through a temporary file + rename.
-// The directory must exist (it is not created). Throws InputError naming the file on failure,
-// leaving neither a partial file nor a temporary behind.
+// the reference's centre render; with the header attributes when `origin` is given, its camera of
+// fb's size) then dir/frame_NNNN.png, each through a temporary file + rename. The directory must
+// exist (it is not created). Throws InputError naming the file on failure, leaving neither a
+// partial file nor a temporary behind.
 void writeFrame(const Framebuffer& fb, const std::filesystem::path& dir, int frame,
-                const ReferenceFrame* subsamples = nullptr);
+                const ReferenceFrame* subsamples = nullptr, const FrameOrigin* origin = nullptr);
 
-// Writes only the EXR (plain, or with the sub-sample channels of `subsamples`, same size as fb)
-// or only the PNG of fb to `path` (atomically, as writeFrame).
-void writeExr(const Framebuffer& fb, const std::filesystem::path& path);
+// Writes only the EXR (plain, or with the sub-sample channels of `subsamples`, same size as fb;
+// with the header attributes of `origin`) or only the PNG of fb to `path` (atomically, as
+// writeFrame).
+void writeExr(const Framebuffer& fb, const std::filesystem::path& path,
+              const FrameOrigin* origin = nullptr);
 void writeExr(const Framebuffer& fb, const ReferenceFrame& subsamples,
-              const std::filesystem::path& path);
+              const std::filesystem::path& path, const FrameOrigin* origin = nullptr);
 void writePng(const Framebuffer& fb, const std::filesystem::path& path);
 
 // Reads an EXR written by writeExr back exactly (extra channels are ignored). Throws InputError
@@ -54,5 +72,10 @@ Framebuffer readFrameExr(const std::filesystem::path& path);
 // sub-sample IDs and box colour exactly as written. Throws InputError naming the file when they
 // are missing (saying to render it with --subsamples) or of the wrong type.
 ReferenceFrame readReferenceExr(const std::filesystem::path& path);
+
+// The header attributes of an EXR, exactly as written; nullopt when it has none (written without
+// an origin, or by an older lzb). Throws InputError naming the file when only some are there,
+// one has the wrong type, the camera is invalid, or its size is not the image's.
+std::optional<FrameOrigin> readFrameOrigin(const std::filesystem::path& path);
 
 }  // namespace lzb

@@ -9,6 +9,8 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -316,6 +318,111 @@ TEST_F(FrameIoTest, CompareFilesOfDifferentSizesNamesBoth) {
     EXPECT_NE(what.find(a.string()), std::string::npos) << what;
     EXPECT_NE(what.find(b.string()), std::string::npos) << what;
   }
+}
+
+// A camera whose every field needs all of a double's bits, for a 37 x 23 frame.
+FrameOrigin sampleOrigin(uint64_t triangles = (1ull << 60) + 3) {
+  CameraSpec c;
+  c.position = {1e7 + 1.0 / 3.0, -2.0 / 7.0, 0.1};
+  c.lookAt = {std::nextafter(1e7, 0.0), 5.0 / 11.0, -1e-9};
+  c.up = {0.1, 1.0 / 3.0, 0.7};
+  c.fovyDegrees = 45.0 / 7.0;
+  c.nearPlane = 1e-3 / 3.0;
+  c.farPlane = 1e5 / 7.0;
+  return {Camera(c, 37, 23), triangles};
+}
+
+void expectSameOrigin(const FrameOrigin& a, const FrameOrigin& b) {
+  const CameraSpec &p = a.camera.spec(), &q = b.camera.spec();
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(p.position[k], q.position[k]);
+    EXPECT_EQ(p.lookAt[k], q.lookAt[k]);
+    EXPECT_EQ(p.up[k], q.up[k]);
+  }
+  EXPECT_EQ(p.fovyDegrees, q.fovyDegrees);
+  EXPECT_EQ(p.nearPlane, q.nearPlane);
+  EXPECT_EQ(p.farPlane, q.farPlane);
+  EXPECT_EQ(a.camera.width(), b.camera.width());
+  EXPECT_EQ(a.camera.height(), b.camera.height());
+  EXPECT_EQ(a.sceneTriangles, b.sceneTriangles);
+  // The rebuilt camera casts the same rays.
+  EXPECT_EQ(a.camera.pixelDirection(3.25, 7.5), b.camera.pixelDirection(3.25, 7.5));
+}
+
+TEST_F(FrameIoTest, TheCameraRoundTripsExactlyInTheHeader) {
+  const Framebuffer fb = sampleFrame();
+  const ReferenceFrame ref = sampleReference(fb);
+  const FrameOrigin origin = sampleOrigin();
+  writeFrame(fb, dir_, 0, nullptr, &origin);
+  writeFrame(fb, dir_, 1, &ref, &origin);
+  for (const char* name : {"frame_0000.exr", "frame_0001.exr"}) {
+    const std::optional<FrameOrigin> back = readFrameOrigin(dir_ / name);
+    ASSERT_TRUE(back.has_value()) << name;
+    expectSameOrigin(*back, origin);
+    EXPECT_TRUE(sameOrigin(*back, origin));
+  }
+  expectSameFrame(fb, readFrameExr(dir_ / "frame_0000.exr"));
+}
+
+TEST_F(FrameIoTest, AFrameWithoutOriginHasNone) {
+  writeFrame(sampleFrame(), dir_, 0);
+  EXPECT_FALSE(readFrameOrigin(dir_ / "frame_0000.exr").has_value());
+}
+
+TEST_F(FrameIoTest, AnOriginOfAnotherSizeIsRefusedAndNothingWritten) {
+  const Framebuffer small(5, 5);
+  const FrameOrigin origin = sampleOrigin();
+  EXPECT_THROW(writeFrame(small, dir_, 0, nullptr, &origin), InputError);
+  EXPECT_TRUE(entries().empty());
+}
+
+// An EXR with some of the header attributes, as a hand-edited file might be.
+void writePartialHeader(const fs::path& path, bool withWrongType) {
+  OIIO::ImageSpec spec(4, 3, 1, OIIO::TypeDesc::FLOAT);
+  const double xyz[3] = {0.0, 0.0, 5.0};
+  spec.attribute("lzb.camera.position", OIIO::TypeDesc(OIIO::TypeDesc::DOUBLE, OIIO::TypeDesc::VEC3), xyz);
+  if (withWrongType) spec.attribute("lzb.camera.look_at", 3.5f);
+  std::vector<float> pixels(12, 0.0f);
+  auto out = OIIO::ImageOutput::create(path.string());
+  ASSERT_TRUE(out && out->open(path.string(), spec));
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+  out->close();
+}
+
+TEST_F(FrameIoTest, AnIncompleteOrMistypedHeaderIsNamed) {
+  const fs::path partial = dir_ / "partial.exr", typed = dir_ / "typed.exr";
+  writePartialHeader(partial, false);
+  writePartialHeader(typed, true);
+  for (const auto& [path, attribute] : {std::pair{partial, "lzb.camera.look_at"},
+                                        std::pair{typed, "lzb.camera.look_at"}}) {
+    try {
+      readFrameOrigin(path);
+      FAIL() << "expected InputError for " << path;
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(path.string()), std::string::npos) << what;
+      EXPECT_NE(what.find(attribute), std::string::npos) << what;
+    }
+  }
+}
+
+TEST_F(FrameIoTest, CompareFilesRefusesFramesOfDifferentCameras) {
+  const Framebuffer fb = sampleFrame();
+  const ReferenceFrame ref = sampleReference(fb);
+  const FrameOrigin a = sampleOrigin(), other = sampleOrigin(12);
+  writeFrame(fb, dir_, 0, nullptr, &a);
+  writeFrame(fb, dir_, 1, &ref, &other);
+  writeFrame(fb, dir_, 2, &ref, &a);
+  const fs::path test = dir_ / "frame_0000.exr", wrong = dir_ / "frame_0001.exr";
+  try {
+    compareFiles(test, wrong);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(test.string()), std::string::npos) << what;
+    EXPECT_NE(what.find(wrong.string()), std::string::npos) << what;
+  }
+  EXPECT_EQ(compareFiles(test, dir_ / "frame_0002.exr").at("witness"), "none");
 }
 
 }  // namespace

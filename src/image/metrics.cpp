@@ -48,34 +48,64 @@ double rateOf(size_t count, size_t total) {
   return total == 0 ? 1.0 : double(count) / double(total);
 }
 
+// The counts of one pixel, summed over the frame.
+struct PixelCounts {
+  size_t covered = 0, correct = 0, correctCovered = 0, exact = 0, missing = 0, extra = 0,
+         wrong = 0, witnessed = 0;
+};
+
+void countPixel(const ReferenceFrame& ref, const VisibilityWitness* witness, int x, int y,
+                size_t i, uint64_t id, PixelCounts& n) {
+  const PixelVerdict v = judgePixel(ref, i, id);
+  const bool testCovered = id != kNoId;
+  // Only a triangle the 17 samples missed needs a witness; a hole shows nothing to witness.
+  const bool witnessed =
+      witness && testCovered && !v.correct && witness->visibleInPixel(x, y, id);
+  const bool correct = v.correct || witnessed;
+  const bool isCovered = testCovered || v.anyCovered;
+  n.covered += isCovered;
+  n.correct += correct;
+  n.correctCovered += isCovered && correct;
+  n.exact += isCovered && id == ref.centreId[i];
+  n.missing += !testCovered && v.allCovered;
+  n.extra += testCovered && !v.anyCovered && !witnessed;
+  n.wrong += testCovered && v.anyCovered && !correct;
+  n.witnessed += witnessed;
+}
+
 }  // namespace
 
-Accuracy compare(const Framebuffer& test, const ReferenceFrame& reference) {
+Accuracy compare(const Framebuffer& test, const ReferenceFrame& reference,
+                 const VisibilityWitness* witness) {
   if (test.width != reference.width || test.height != reference.height)
     throw InputError("compare: image sizes differ (" + sizeText(test.width, test.height) +
                      " vs reference " + sizeText(reference.width, reference.height) + ")");
   if (test.size() == 0) throw InputError("compare: empty images");
 
-  size_t covered = 0, correct = 0, correctCovered = 0, exact = 0, missing = 0, extra = 0, wrong = 0;
+  size_t covered = 0, correct = 0, correctCovered = 0, exact = 0, missing = 0, extra = 0,
+         wrong = 0, witnessed = 0;
+  // Squared errors are multiples of 1/256 (bytes against sixteenths of a byte) and sum to at most
+  // 3 * 255^2 * 4096^2 < 2^42: exact in a double, so the threads' order cannot change the sum.
   double squared = 0.0;
-#pragma omp parallel for schedule(static) \
-    reduction(+ : covered, correct, correctCovered, exact, missing, extra, wrong, squared)
+  // Rows handed out one by one: witnessed pixels cost rays, and they cluster.
+#pragma omp parallel for schedule(dynamic, 1)                                              \
+    reduction(+ : covered, correct, correctCovered, exact, missing, extra, wrong, witnessed, \
+                  squared)
   for (int y = 0; y < test.height; ++y) {
+    PixelCounts n;
     for (int x = 0; x < test.width; ++x) {
       const size_t i = test.index(x, y);
-      const uint64_t id = test.id[i];
-      const PixelVerdict v = judgePixel(reference, i, id);
-      const bool testCovered = id != kNoId;
-      const bool isCovered = testCovered || v.anyCovered;
-      covered += isCovered;
-      correct += v.correct;
-      correctCovered += isCovered && v.correct;
-      exact += isCovered && id == reference.centreId[i];
-      missing += !testCovered && v.allCovered;
-      extra += testCovered && !v.anyCovered;
-      wrong += testCovered && v.anyCovered && !v.correct;
+      countPixel(reference, witness, x, y, i, test.id[i], n);
       squared += squaredColourError(test.color[i], reference.boxColor[i]);
     }
+    covered += n.covered;
+    correct += n.correct;
+    correctCovered += n.correctCovered;
+    exact += n.exact;
+    missing += n.missing;
+    extra += n.extra;
+    wrong += n.wrong;
+    witnessed += n.witnessed;
   }
   Accuracy a;
   a.pixels = test.size();
@@ -86,6 +116,8 @@ Accuracy compare(const Framebuffer& test, const ReferenceFrame& reference) {
   a.missingPixels = missing;
   a.extraPixels = extra;
   a.wrongPixels = wrong;
+  a.witnessedPixels = witnessed;
+  a.witness = witness ? witness->name() : "none";
   a.correctRateCovered = rateOf(correctCovered, covered);
   a.correctRateAll = rateOf(correct, a.pixels);
   a.exactIdRateCovered = rateOf(exact, covered);
@@ -110,6 +142,8 @@ nlohmann::json toJson(const Accuracy& a) {
   j["missing_pixels"] = a.missingPixels;
   j["extra_pixels"] = a.extraPixels;
   j["wrong_pixels"] = a.wrongPixels;
+  j["witnessed_pixels"] = a.witnessedPixels;
+  j["witness"] = a.witness;
   j["reference_samples_per_pixel"] = a.referenceSamplesPerPixel;
   return j;
 }

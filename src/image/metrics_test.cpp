@@ -2,8 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
+#include <atomic>
 #include <cmath>
 #include <random>
+#include <set>
+#include <string>
+#include <tuple>
 
 #include "src/core/error.hpp"
 
@@ -60,7 +66,9 @@ TEST(Metrics, TheReferenceItselfIsPerfect) {
   EXPECT_TRUE(j.at("psnr_aa").is_null());
   EXPECT_EQ(j.at("correct_rate_covered"), 1.0);
   EXPECT_EQ(j.at("reference_samples_per_pixel"), 17);
-  EXPECT_EQ(j.size(), 14u);
+  EXPECT_EQ(j.at("witness"), "none");
+  EXPECT_EQ(j.at("witnessed_pixels"), 0);
+  EXPECT_EQ(j.size(), 16u);
   // Round-trips through text: no inf or nan reaches the JSON.
   EXPECT_EQ(nlohmann::json::parse(j.dump()), j);
 }
@@ -170,6 +178,87 @@ TEST(Metrics, RmseIsAgainstTheBoxFilteredColour) {
 TEST(Metrics, SizeMismatchThrows) {
   EXPECT_THROW(compare(Framebuffer(4, 4), ReferenceFrame(4, 5)), InputError);
   EXPECT_THROW(compare(Framebuffer(), ReferenceFrame()), InputError);
+}
+
+// A witness that proves exactly the (x, y, ID) triples it holds and counts the questions.
+class ListWitness : public VisibilityWitness {
+ public:
+  std::set<std::tuple<int, int, uint64_t>> proven;
+  mutable std::atomic<int> asked{0};
+  std::string name() const override { return "list"; }
+  bool visibleInPixel(int x, int y, uint64_t id) const override {
+    ++asked;
+    return proven.count({x, y, id}) > 0;
+  }
+};
+
+TEST(Metrics, AWitnessSettlesOnlyCoveredPixelsTheSeventeenMiss) {
+  const ReferenceFrame ref = uniformReference(3, 2, 5, kGrey);
+  Framebuffer test = uniformFrame(3, 2, 5, kGrey);
+  test.id[1] = 9;      // (1, 0): proven below
+  test.id[2] = 9;      // (2, 0): not proven
+  test.id[3] = kNoId;  // (0, 1): a hole, never asked even if "proven"
+  ListWitness witness;
+  witness.proven = {{1, 0, 9}, {0, 1, kNoId}, {0, 0, 5}};
+  const Accuracy a = compare(test, ref, &witness);
+  EXPECT_EQ(witness.asked, 2);  // pixels 1 and 2: pixel 0's ID is among the 17
+  EXPECT_EQ(a.witness, "list");
+  EXPECT_EQ(a.witnessedPixels, 1u);
+  EXPECT_EQ(a.coveredPixels, 6u);
+  EXPECT_EQ(a.correctCoveredPixels, 4u);
+  EXPECT_EQ(a.wrongPixels, 1u);
+  EXPECT_EQ(a.missingPixels, 1u);
+  EXPECT_EQ(a.extraPixels, 0u);
+  EXPECT_EQ(a.exactCoveredPixels, 3u);  // a witness proves visibility, not the centre's ID
+  EXPECT_DOUBLE_EQ(a.correctRateCovered, 4.0 / 6.0);
+  expectCountsAddUp(a);
+  const nlohmann::json j = toJson(a);
+  EXPECT_EQ(j.at("witness"), "list");
+  EXPECT_EQ(j.at("witnessed_pixels"), 1);
+  // Without the witness the same frame loses exactly the witnessed pixel.
+  const Accuracy plain = compare(test, ref);
+  EXPECT_EQ(plain.witness, "none");
+  EXPECT_EQ(plain.correctCoveredPixels + a.witnessedPixels, a.correctCoveredPixels);
+}
+
+TEST(Metrics, AWitnessedTriangleAgainstTheSkyIsCorrectNotExtra) {
+  const ReferenceFrame ref = uniformReference(3, 1, kNoId, kBackground);
+  Framebuffer test = uniformFrame(3, 1, 4, kGrey);  // a sub-pixel triangle no sample hit
+  test.id[2] = kNoId;
+  ListWitness witness;
+  witness.proven = {{0, 0, 4}};
+  const Accuracy a = compare(test, ref, &witness);
+  EXPECT_EQ(a.coveredPixels, 2u);
+  EXPECT_EQ(a.witnessedPixels, 1u);
+  EXPECT_EQ(a.extraPixels, 1u);  // pixel 1
+  EXPECT_EQ(a.correctCoveredPixels, 1u);
+  EXPECT_EQ(a.correctPixels, 2u);  // pixel 0 (witnessed) and pixel 2 (sky in both)
+  expectCountsAddUp(a);
+}
+
+// Proves about a third of (pixel, ID) pairs, by a hash: the same answer on every call.
+class HashWitness : public VisibilityWitness {
+ public:
+  std::string name() const override { return "hash"; }
+  bool visibleInPixel(int x, int y, uint64_t id) const override {
+    return (uint64_t(x) * 0x9e3779b97f4a7c15ull ^ uint64_t(y) * 0xc2b2ae3d27d4eb4full ^ id) % 3 == 0;
+  }
+};
+
+TEST(Metrics, WitnessedCountsDoNotDependOnTheThreads) {
+  const ReferenceFrame ref = uniformReference(97, 61, 5, kGrey);
+  Framebuffer test = uniformFrame(97, 61, 5, kGrey);
+  std::mt19937_64 rng(11);
+  for (auto& id : test.id) id = rng() % 4 == 0 ? kNoId : 1000 + rng() % 1000;
+  const HashWitness witness;
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const nlohmann::json one = toJson(compare(test, ref, &witness));
+  omp_set_num_threads(4);
+  const nlohmann::json four = toJson(compare(test, ref, &witness));
+  omp_set_num_threads(threads);
+  EXPECT_EQ(one, four);
+  EXPECT_GT(one.at("witnessed_pixels").get<size_t>(), test.size() / 5);
 }
 
 }  // namespace
