@@ -369,11 +369,15 @@ struct Pixel {
 };
 static_assert(sizeof(Pixel) == 16);
 
+// in is the lower ranks' side (the operator is declared non-commutative, so MPI applies it in
+// rank order): on equal (depth, id) the lower rank's pixel stays. Colour is not in the key, and
+// an empty pixel may carry colour (rzb's Gaussian reconstruction spreads it past the geometry),
+// so only a fixed preference gives the 1-rank image.
 void nearerPixel(void* in, void* inout, int* len, MPI_Datatype*) {
   const Pixel* a = static_cast<const Pixel*>(in);
   Pixel* b = static_cast<Pixel*>(inout);
   for (int i = 0; i < *len; ++i)
-    if (nearer(a[i].depth, a[i].id, b[i].depth, b[i].id)) b[i] = a[i];
+    if (!nearer(b[i].depth, b[i].id, a[i].depth, a[i].id)) b[i] = a[i];
 }
 
 }  // namespace
@@ -400,7 +404,7 @@ CompositeStats compositeWithColour(const Group& g, Framebuffer& fb) {
   LZB_MPI_CALL(MPI_Type_contiguous(sizeof(Pixel), MPI_BYTE, &type));
   LZB_MPI_CALL(MPI_Type_commit(&type));
   MPI_Op op;
-  LZB_MPI_CALL(MPI_Op_create(&nearerPixel, /*commute=*/1, &op));
+  LZB_MPI_CALL(MPI_Op_create(&nearerPixel, /*commute=*/0, &op));
   for (size_t start = 0; start < n; start += kChunk) {
     const int count = int(std::min(kChunk, n - start));
     LZB_MPI_CALL(MPI_Reduce(mine.data() + start, g.root() ? result.data() + start : nullptr, count,

@@ -14,7 +14,7 @@
 //   tiles   each rank sends its touched 16 x 16 tiles straight to the root, which reduces them
 //           (cheapest where ranks own disjoint tiles).
 // Renderers whose colour is not a function of the IDs (rzb's Gaussian reconstruction) composite
-// whole 16-byte pixels with compositeWithColour.
+// whole 16-byte pixels with compositeWithColour, equal (depth, ID) keeping the lower rank's.
 #include <string>
 
 #include "mpi/group.hpp"

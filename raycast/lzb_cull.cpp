@@ -26,8 +26,9 @@ struct ChildVisit {
 
 class Culler {
  public:
-  Culler(const LzbAccel& accel, const Camera& camera)
-      : accel_(accel), scene_(accel.scene()), camera_(camera), frustum_(camera.frustum()) {}
+  Culler(const LzbAccel& accel, const Camera& camera, const LeafFilter* filter)
+      : accel_(accel), scene_(accel.scene()), camera_(camera), frustum_(camera.frustum()),
+        filter_(filter) {}
 
   // Culls node's octree into out and walks its visible instances, or, with `deferred`, lists
   // them there (in instance order) for the caller to walk.
@@ -44,24 +45,25 @@ class Culler {
       p.node = node;
       p.world = world;
       p.idBase = idBase;
-      p.depthGrad = glm::transpose(glm::dmat3(world)) * camera_.forward();
-      p.depthOffset = glm::dot(glm::dvec3(world[3]) - camera_.position(), camera_.forward());
+      depthPlane(world, camera_.position(), camera_.forward(), p.depthGrad, p.depthOffset);
+      p.drawnElsewhere =
+          filter_ && filter_->nodeDrawnElsewhere(
+                         node, {p.depthGrad, p.depthOffset, maxAreaScale(glm::dmat3(world))});
       pathIndex = uint32_t(out.paths.size());
       out.paths.push_back(p);
     }
+    const bool listLeaves = hasTriangles && !out.paths[pathIndex].drawnElsewhere;
     const glm::dvec3 grad = hasTriangles ? out.paths[pathIndex].depthGrad : glm::dvec3(0.0);
     const double offset = hasTriangles ? out.paths[pathIndex].depthOffset : 0.0;
     std::vector<uint32_t> instances;
     const Frustum local = hasTriangles ? frustumToNodeSpace(frustum_, world) : Frustum{};
     a.octree().cullFrustum(frustum_, world, [&](uint32_t leaf, Cull cull) {
       // The leaf's content box, tighter than its cube, decides (cube inside: content inside).
-      if (hasTriangles && !a.leafTriangles(leaf).empty() &&
+      if (listLeaves && !a.leafTriangles(leaf).empty() &&
           (cull == Cull::kInside || local.classify(a.contentBox(leaf)) != Cull::kOutside)) {
-        const Bounds& b = a.contentBox(leaf);
-        const glm::dvec3 c = b.center(), h = 0.5 * b.extent();
-        const double mid = glm::dot(grad, c) + offset;
-        const double reach = glm::dot(glm::abs(grad), h);
-        out.leaves.push_back({pathIndex, leaf, mid - reach, mid + reach});
+        double lo, hi;
+        depthRange(a.contentBox(leaf), grad, offset, lo, hi);
+        out.leaves.push_back({pathIndex, leaf, lo, hi});
       }
       for (uint32_t i : a.leafInstances(leaf)) instances.push_back(i);
     });
@@ -90,15 +92,17 @@ class Culler {
   const Scene& scene_;
   const Camera& camera_;
   Frustum frustum_;
+  const LeafFilter* filter_;
 };
 
 }  // namespace
 
-void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, int threads) {
+void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, int threads,
+               const LeafFilter* filter) {
   out.paths.clear();
   out.leaves.clear();
   out.instancesVisited = 0;
-  Culler culler(accel, camera);
+  Culler culler(accel, camera, filter);
   std::vector<ChildVisit> children;
   culler.visit(accel.scene().root, glm::dmat4(1.0), 0, out, &children);
   // The root's visible instances are walked in parallel, each into a part of its own; parts are
@@ -110,7 +114,7 @@ void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, in
   for (long k = 0; k < count; ++k) {
     try {
       const ChildVisit& c = children[size_t(k)];
-      Culler(accel, camera).visit(c.node, c.world, c.idBase, parts[size_t(k)]);
+      Culler(accel, camera, filter).visit(c.node, c.world, c.idBase, parts[size_t(k)]);
     } catch (...) {
 #pragma omp critical
       if (!failure) failure = std::current_exception();
@@ -130,9 +134,10 @@ void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, in
   }
 }
 
-CulledScene cullScene(const LzbAccel& accel, const Camera& camera, int threads) {
+CulledScene cullScene(const LzbAccel& accel, const Camera& camera, int threads,
+                      const LeafFilter* filter) {
   CulledScene out;
-  cullScene(accel, camera, out, threads);
+  cullScene(accel, camera, out, threads, filter);
   return out;
 }
 

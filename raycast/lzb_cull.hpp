@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "raycast/lzb_accel.hpp"
+#include "raycast/lzb_leaf_filter.hpp"
 #include "src/core/camera.hpp"
 
 namespace lzb {
@@ -22,6 +23,8 @@ struct CullPath {
   // View depth of a node-frame point p: dot(depthGrad, p) + depthOffset (affine in p).
   glm::dvec3 depthGrad{0.0};
   double depthOffset = 0.0;
+  // A filter (LeafFilter::nodeDrawnElsewhere) took all of its triangles: no leaf is listed.
+  bool drawnElsewhere = false;
 };
 
 struct CullLeaf {
@@ -41,8 +44,12 @@ struct CulledScene {
 constexpr size_t kMaxCullPaths = size_t(1) << 22;
 
 // The root's visible instances are culled on `threads` threads; the result does not depend on it.
-CulledScene cullScene(const LzbAccel& accel, const Camera& camera, int threads = 1);
+// With a filter, a placement whose triangles the filter takes wholly is listed with
+// drawnElsewhere set and none of its leaves (its instances are walked as usual).
+CulledScene cullScene(const LzbAccel& accel, const Camera& camera, int threads = 1,
+                      const LeafFilter* filter = nullptr);
 // The same into `out` (cleared first), reusing its memory frame after frame.
-void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, int threads = 1);
+void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, int threads = 1,
+               const LeafFilter* filter = nullptr);
 
 }  // namespace lzb

@@ -39,10 +39,9 @@ void LzbMethod::addOptions(CLI::App& c) {
   c.add_option("--lzb-stage", stage_,
                "lzb: far-scene stage: naive | lazy | selective | oor | final")
       ->capture_default_str();
-  c.add_option("--plane", plane_,
-               "lzb: partition plane: auto (coarse ray casting, mean depth), cost (coarse ray "
-               "casting, cost model) or a fraction F in (0, 1) of the frustum depth")
-      ->capture_default_str();
+  addSharedOption(c, "--plane", plane_,
+                  "lzb, hybrid: partition plane: auto (coarse ray casting, mean depth), cost "
+                  "(coarse ray casting, cost model) or a fraction F in (0, 1) of the frustum depth");
   c.add_option("--plane-grid", o.planeGrid,
                "lzb: coarse rays of the dynamic planes (auto, cost): N x N pixels")
       ->capture_default_str();

@@ -212,19 +212,61 @@ void RayWalker::flush(PvlPart& out) {
   rayLeaves_.clear();
 }
 
+glm::dmat4 RayWalker::contextWorld(uint32_t ctx) const {
+  uint32_t chain[64];
+  int n = 0;
+  for (uint32_t k = ctx; ctx_[k].parent != kNone && n < 64; k = ctx_[k].parent) chain[n++] = k;
+  glm::dmat4 world(1.0);
+  while (n > 0) {
+    const Context& kc = ctx_[chain[--n]];
+    world = world * accel_.scene().nodes[ctx_[kc.parent].node].instances[kc.instance].transform;
+  }
+  return world;
+}
+
+namespace {
+
+LeafPlacement placementFrom(const glm::dmat4& world, const glm::dvec3& eye, const glm::dvec3& forward) {
+  LeafPlacement p;
+  depthPlane(world, eye, forward, p.depthGrad, p.depthOffset);
+  p.areaScale = maxAreaScale(glm::dmat3(world));
+  return p;
+}
+
+}  // namespace
+
+const LeafPlacement& RayWalker::placementOf(uint32_t ctx) {
+  Context& c = ctx_[ctx];
+  if (!c.leafPlaced) {
+    c.leafPlacement = placementFrom(contextWorld(ctx), eye_, forward_);
+    c.leafPlaced = true;
+  }
+  return c.leafPlacement;
+}
+
+bool RayWalker::drawnElsewhere(uint32_t ctx, uint32_t leaf) {
+  const LeafPlacement& p = placementOf(ctx);
+  Context& c = ctx_[ctx];
+  if (c.wholeNode == 0) c.wholeNode = filter_->nodeDrawnElsewhere(c.node, p) ? 1 : 2;
+  return c.wholeNode == 1 || filter_->drawnElsewhere(c.node, leaf, p);
+}
+
+bool RayWalker::instanceDrawnElsewhere(uint32_t ctx, uint32_t i) {
+  const Scene& scene = accel_.scene();
+  const Instance& inst = scene.nodes[ctx_[ctx].node].instances[i];
+  if (!scene.nodes[inst.node].instances.empty()) return false;
+  // The child's world as contextWorld would compose it: the parent's, then this instance.
+  const glm::dmat4 world = contextWorld(ctx) * inst.transform;
+  return filter_->nodeDrawnElsewhere(inst.node, placementFrom(world, eye_, forward_));
+}
+
 void RayWalker::record(uint32_t ctx, uint32_t leaf, PvlPart& out) {
   Context& c = ctx_[ctx];
   if (c.placement < 0) {
     auto it = out.index.find(c.idBase);
     if (it == out.index.end()) {
-      // The placement's world transform: the instance transforms along the context chain.
-      glm::dmat4 world(1.0);
-      for (uint32_t k = ctx; ctx_[k].parent != kNone; k = ctx_[k].parent) {
-        const Context& kc = ctx_[k];
-        world = accel_.scene().nodes[ctx_[kc.parent].node].instances[kc.instance].transform * world;
-      }
       it = out.index.emplace(c.idBase, uint32_t(out.placements.size())).first;
-      out.placements.push_back({c.idBase, c.node, world});
+      out.placements.push_back({c.idBase, c.node, contextWorld(ctx)});
     }
     c.placement = int32_t(it->second);
   }
@@ -235,7 +277,9 @@ void RayWalker::processLeaf(uint32_t ctx, uint32_t leaf, PvlPart& out) {
   const uint32_t node = ctx_[ctx].node;
   const NodeAccel& a = accel_.node(node);
   const Scene& scene = accel_.scene();
-  const std::span<const uint32_t> tris = a.leafTriangles(leaf);
+  std::span<const uint32_t> tris = a.leafTriangles(leaf);
+  // Triangles another pass draws are not tested (the filter's leaves are never recorded).
+  if (filter_ && !countAll_ && !tris.empty() && drawnElsewhere(ctx, leaf)) tris = {};
   double c0 = tMin_, c1 = std::min(tBest_, tMax_);
   // A ray that misses the leaf's content box cannot hit a triangle of the leaf (in the leaf).
   if (!tris.empty() && !ctx_[ctx].ray.clip(a.contentBox(leaf), c0, c1)) {
@@ -289,6 +333,7 @@ void RayWalker::processLeaf(uint32_t ctx, uint32_t leaf, PvlPart& out) {
     stampCtx_[slot] = ctx;
     double i0 = tMin_, i1 = std::min(tBest_, tMax_);
     if (!ctx_[ctx].ray.clip(a.instanceBox(i), i0, i1)) continue;  // misses the instance
+    if (filter_ && !countAll_ && instanceDrawnElsewhere(ctx, i)) continue;
     const Affine& inv = a.instanceInverse(i);
     const WalkRay& parentRay = ctx_[ctx].ray;
     const glm::dvec3 o = inv.point(parentRay.o), d = inv.vector(parentRay.d);

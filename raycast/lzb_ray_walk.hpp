@@ -51,6 +51,7 @@
 #include <vector>
 
 #include "raycast/lzb_accel.hpp"
+#include "raycast/lzb_leaf_filter.hpp"
 #include "raycast/lzb_options.hpp"
 #include "src/octree/octree.hpp"
 
@@ -154,6 +155,13 @@ class RayWalker {
   // ray that finds no hit records only the leaves it could not clear (see the top); 0 (the
   // default) records every traversed leaf of every ray.
   void setPixelScale(double pixelsPerUnitAtDepth1) { pixelScale_ = pixelsPerUnitAtDepth1; }
+  // Leaves another pass draws (null: none): their triangles are not tested. eye and forward are
+  // the camera's, for the leaves' placements.
+  void setLeafFilter(const LeafFilter* filter, const glm::dvec3& eye, const glm::dvec3& forward) {
+    filter_ = filter;
+    eye_ = eye;
+    forward_ = forward;
+  }
   // Walks the world-space ray origin + t dir, t in [tMin, tMax]; records traversed leaves into
   // out. Returns the nearest hit found (+inf for none: the ray saw nothing behind tMin).
   double cast(const glm::dvec3& origin, const glm::dvec3& dir, double tMin, double tMax,
@@ -177,6 +185,11 @@ class RayWalker {
     int32_t placement;  // index in the PvlPart, -1 until the first record
     bool coherent;      // rope stepping (false: top-down, also the fallback)
     uint32_t steps;     // rope steps so far (a bound guards against float trouble)
+    // With a leaf filter only, computed on first use: the placement, and whether the filter
+    // takes all of the node's triangles (0: not asked yet, 1: yes, 2: no).
+    bool leafPlaced = false;
+    uint8_t wholeNode = 0;
+    LeafPlacement leafPlacement{};
   };
   struct Item {
     double tEnter, tExit;
@@ -185,6 +198,13 @@ class RayWalker {
   void enter(uint32_t ctx, double t0, double t1);
   void processLeaf(uint32_t ctx, uint32_t leaf, PvlPart& out);
   void record(uint32_t ctx, uint32_t leaf, PvlPart& out);
+  // Node frame -> world of a context: the instance transforms composed root first.
+  glm::dmat4 contextWorld(uint32_t ctx) const;
+  const LeafPlacement& placementOf(uint32_t ctx);
+  bool drawnElsewhere(uint32_t ctx, uint32_t leaf);
+  // With a filter: whether instance i of context ctx's node leads to a node that has no instances
+  // and whose triangles the filter takes all of (its walk is then skipped).
+  bool instanceDrawnElsewhere(uint32_t ctx, uint32_t i);
   void flush(PvlPart& out);  // end of a ray: its traversed leaves into out
   // Coherent: the next non-empty leaf along the ray into `next` (false: none before the limit,
   // or the walk fell back to top-down and queued its root).
@@ -207,6 +227,8 @@ class RayWalker {
   };
   std::vector<RayLeaf> rayLeaves_;  // the current ray's traversed leaves
   double pixelScale_ = 0.0;
+  const LeafFilter* filter_ = nullptr;
+  glm::dvec3 eye_{0.0}, forward_{0.0, 0.0, -1.0};
   bool countAll_ = false;           // countSurfaces in progress
   std::vector<uint64_t> surfaces_;  // its hits (expanded IDs)
   double tMin_ = 0.0, tMax_ = 0.0, tBest_ = std::numeric_limits<double>::infinity();

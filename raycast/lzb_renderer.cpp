@@ -137,7 +137,9 @@ void LzbRenderer::render(const Camera& camera, int /*frame*/, const WorkShare& s
   countFrame(f, stats);
 }
 
-void LzbRenderer::cull(Frame& f) { cullScene(*accel_, *f.camera, culled_, options_.threads); }
+void LzbRenderer::cull(Frame& f) {
+  cullScene(*accel_, *f.camera, culled_, options_.threads, f.leafFilter);
+}
 
 void LzbRenderer::placePlane(Frame& f) {
   std::vector<LeafLoad> loads;
@@ -227,7 +229,10 @@ void LzbRenderer::castFarRays(Frame& f) {
     last_.pvl = {};
   } else {
     if (parts_.size() < size_t(count)) parts_.resize(size_t(count));
-    for (RayWalker& w : walkers_) w.setPixelScale(camera.pixelsPerUnitAt(1.0));
+    for (RayWalker& w : walkers_) {
+      w.setPixelScale(camera.pixelsPerUnitAt(1.0));
+      w.setLeafFilter(f.leafFilter, camera.position(), camera.forward());
+    }
     for (long k = 0; k < count; ++k) parts_[size_t(k)].clear();
 #pragma omp parallel num_threads(threads)
     {

@@ -62,6 +62,9 @@ class LzbRenderer : public Renderer {
     TileCastCounts tileCounts;
     bool farApart = false;     // farPass_ holds far-scene pixels still to composite with fb
     bool nativePvl = false;    // the native z-buffer drew the PVL
+    // Set by a composing method (hybrid): what another pass draws, which the cull leaves out
+    // (whole placed nodes) and the walk skips.
+    const LeafFilter* leafFilter = nullptr;
   };
   // 1. Hierarchical view-frustum culling of the octrees.
   void cull(Frame& f);
@@ -81,6 +84,9 @@ class LzbRenderer : public Renderer {
   // 7. A far pass drawn apart (naive rays, a GL PVL after a native near pass) joins fb by the
   // compositing key.
   void combine(Frame& f, Framebuffer& fb);
+  // The frame's counts: shared figures (plane, cull, near pass) and this rank's share (rays,
+  // walk, PVL).
+  void countFrame(const Frame& f, FrameStats& stats) const;
 
   // What the last frame did, for tests and studies.
   struct FrameDetail {
@@ -95,10 +101,12 @@ class LzbRenderer : public Renderer {
   // straight into the frame, nothing copied).
   void keepNearPass(bool keep) { keepNearPass_ = keep; }
   const LzbAccel& accel() const { return *accel_; }
+  const CulledScene& culled() const { return culled_; }
+  // The unfinished pixels of the last near pass (1), per pixel.
+  const std::vector<uint8_t>& unfinishedMask() const { return open_; }
   const LzbOptions& options() const { return lzb_; }
 
  private:
-  void countFrame(const Frame& f, FrameStats& stats) const;
   void measureDepthComplexity(const Camera& camera, FrameStats& stats);
 
   const Scene& scene_;

@@ -123,7 +123,7 @@ TEST(Render, ReportHasParametersStagesCountsAndMemory) {
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("frame time"), std::string::npos) << r.output;
   const nlohmann::json rep = readJson(out / "report.json");
-  EXPECT_EQ(rep["method"], "zbuffer");
+  EXPECT_EQ(rep["method"], "hybrid");  // the default
   EXPECT_EQ(rep["width"], 96);
   EXPECT_EQ(rep["height"], 64);
   EXPECT_EQ(rep["ranks"], 1);

@@ -12,7 +12,7 @@ namespace lzb {
 
 struct RenderArgs {
   std::string scene;
-  std::string method = "zbuffer";
+  std::string method = "hybrid";
   std::string reference;  // empty: none
   bool subsamples = false;  // store the 4x4 sub-sample IDs and box colour in each EXR
   std::string out = "out";

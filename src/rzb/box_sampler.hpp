@@ -22,6 +22,7 @@
 #include <glm/glm.hpp>
 
 #include "src/rzb/box_selection.hpp"
+#include "src/core/area_sampling.hpp"
 #include "src/core/philox_stream.hpp"
 #include "src/rzb/sample_tree.hpp"
 
@@ -140,27 +141,6 @@ void descendGroup(Descent* group, uint32_t n, const SampleStream& stream, uint64
   }
 }
 
-// The first j in [from, e) with P[j] > target (e - 1 if none), from >= b: a forward gallop.
-inline uint64_t searchForward(const double* P, uint64_t e, uint64_t from, double target) {
-  if (P[from] > target) return from;
-  uint64_t lo = from + 1, hi, step = 1;
-  for (;;) {
-    if (lo >= e) return e - 1;
-    hi = e - lo > step ? lo + step : e;
-    if (P[hi - 1] > target || hi == e) break;
-    lo = hi;
-    step <<= 1;
-  }
-  // Branchless binary search in [lo, hi).
-  uint64_t n = hi - lo;
-  while (n > 1) {
-    const uint64_t h = n >> 1;
-    lo = P[lo + h - 1] <= target ? lo + h : lo;
-    n -= h;
-  }
-  return lo;
-}
-
 // Samples [first, first + count) of the `total` samples of box. Sink: void(const dvec3& p,
 // const dvec3& n, uint64_t id, const SampleTree* leaf, uint32_t meshIndex), and optionally
 // flush(), called after every batch of kDrawBatch samples.
@@ -197,12 +177,8 @@ void drawBoxSamples(const SelectedBox& box, const SampleStream& stream, uint64_t
       // 32 bits of jitter are ample inside a stratum; word 1 stays spare for a deep descent.
       const double jitter = (double(d.w[0][k]) + 0.5) * 0x1p-32;
       const double u = std::min((double(i) + jitter) * inv, 1.0 - 0x1p-53);
-      // Fold the unit square onto the triangle without a branch (it would mispredict half the
-      // time): with m = 1, a + (1 - 2a) = 1 - a exactly for 24-bit a.
       float a = unit24(d.w[2][k]), c = unit24(d.w[3][k]);
-      const float m = float(a + c > 1.0f);
-      a += m * (1.0f - 2.0f * a);
-      c += m * (1.0f - 2.0f * c);
+      foldUnitSquare(a, c);
       double rem = 0.0, res = 0x1p-32 * inv;
       if (clean) {
         const double target = base + u * span;

@@ -80,15 +80,14 @@ class RzbMethod : public Method {
                    "rzb: depth accuracy eps > 1 (a box is selected when (zmax/zmin)^2 <= eps), or "
                    "'auto' (least modelled cost per frame)")
         ->capture_default_str();
-    app.add_option("--oversample", oversample_,
-                   "rzb: scales the ln(pixels) samples per pixel of projected area")
-        ->capture_default_str();
-    app.add_option("--splat", splat_, "rzb: splat size d (d x d pixels; d^2 fewer samples)")
-        ->capture_default_str();
-    app.add_option("--fallback", fallback_,
-                   "rzb: boxes whose triangles project above this many pixels are rasterized by "
-                   "the z-buffer: auto (d^2 / ln pixels), off, or a number")
-        ->capture_default_str();
+    addSharedOption(app, "--oversample", oversample_,
+                    "rzb, hybrid: scales the ln(pixels) samples per pixel of projected area");
+    addSharedOption(app, "--splat", splat_,
+                    "rzb, hybrid: splat size d (d x d pixels; d^2 fewer samples)");
+    addSharedOption(app, "--fallback", fallback_,
+                    "rzb, hybrid: boxes (hybrid: octree leaves) whose triangles project above this "
+                    "many pixels are drawn exactly (rzb: z-buffer; hybrid: lazy ray casting + "
+                    "PVL): auto (d^2 / ln pixels), off (rzb only), or a number");
     app.add_option("--reconstruct", reconstruct_,
                    "rzb: pixel | splat | gauss (Gaussian average of visible samples, 10x samples) "
                    "| auto (pixel for d = 1, else splat)")
@@ -96,8 +95,7 @@ class RzbMethod : public Method {
     app.add_option("--area-ratio", areaRatio_, "rzb: area class width, 2..64")->capture_default_str();
     app.add_option("--cache-mb", cacheMb_, "rzb: sample cache budget in MiB (0: no cache)")
         ->capture_default_str();
-    app.add_option("--backfaces", backfaces_, "rzb: drop | keep samples on back faces")
-        ->capture_default_str();
+    addSharedOption(app, "--backfaces", backfaces_, "rzb, hybrid: drop | keep samples on back faces");
   }
   void validate() override {
     params_ = rzb::parseRzbOptions(eps_, oversample_, splat_, fallback_, reconstruct_, areaRatio_,

@@ -1,0 +1,72 @@
+#include "src/hybrid/hybrid_method.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "src/core/error.hpp"
+#include "src/hybrid/hybrid_renderer.hpp"
+
+namespace lzb {
+
+namespace {
+
+class HybridMethod : public Method {
+ public:
+  std::string name() const override { return "hybrid"; }
+  std::string summary() const override {
+    return "approximate: near scene by z-buffer; behind the partition plane, sub-pixel octree "
+           "leaves by the randomized point pass, the rest by lazy ray casting -> PVL -> z-buffer";
+  }
+  void addOptions(CLI::App& c) override {
+    addSharedOption(c, "--oversample", oversample_,
+                    "rzb, hybrid: scales the ln(pixels) samples per pixel of projected area");
+    addSharedOption(c, "--splat", params_.splat,
+                    "rzb, hybrid: splat size d (d x d pixels; d^2 fewer samples)");
+    addSharedOption(c, "--fallback", fallback_,
+                    "rzb, hybrid: boxes (hybrid: octree leaves) whose triangles project above this "
+                    "many pixels are drawn exactly (rzb: z-buffer; hybrid: lazy ray casting + "
+                    "PVL): auto (d^2 / ln pixels), off (rzb only), or a number");
+    addSharedOption(c, "--backfaces", backfaces_, "rzb, hybrid: drop | keep samples on back faces");
+    addSharedOption(c, "--plane", plane_,
+                    "lzb, hybrid: partition plane: auto (coarse ray casting, mean depth), cost "
+                    "(coarse ray casting, cost model) or a fraction F in (0, 1) of the frustum "
+                    "depth");
+  }
+  void validate() override {
+    params_.oversample = oversample_;
+    if (fallback_ == "auto") {
+      params_.fallbackPx = 0.0;
+    } else {
+      size_t used = 0;
+      double v = 0.0;
+      try {
+        v = std::stod(fallback_, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      require(used == fallback_.size() && used > 0 && std::isfinite(v) && v > 0.0, "--fallback",
+              "expected 'auto' or a pixel area > 0 for the hybrid, got '" + fallback_ + "'");
+      params_.fallbackPx = v;
+    }
+    require(backfaces_ == "drop" || backfaces_ == "keep", "--backfaces",
+            "expected drop or keep, got '" + backfaces_ + "'");
+    params_.dropBackfaces = backfaces_ == "drop";
+    parsePlane(plane_, "--plane", params_.lzb);
+    params_.validate();
+  }
+  nlohmann::json parameters() const override { return params_.toJson(); }
+  std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const override {
+    return std::make_unique<hybrid::HybridRenderer>(scene, options, params_);
+  }
+
+ private:
+  double oversample_ = 1.0;
+  std::string fallback_ = "auto", backfaces_ = "drop", plane_ = "cost";
+  hybrid::HybridParams params_;
+};
+
+}  // namespace
+
+std::unique_ptr<Method> makeHybridMethod() { return std::make_unique<HybridMethod>(); }
+
+}  // namespace lzb

@@ -1,0 +1,166 @@
+#include "src/hybrid/hybrid_renderer.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "mpi/decomposition.hpp"
+#include "src/core/error.hpp"
+#include "src/core/timer.hpp"
+
+namespace lzb::hybrid {
+
+void HybridParams::validate() const {
+  require(oversample > 0.0 && oversample <= 1000.0, "--oversample", "must be in (0, 1000]");
+  require(splat >= 1 && splat <= 64, "--splat", "must be in [1, 64]");
+  require(fallbackPx >= 0.0 && std::isfinite(fallbackPx), "--fallback",
+          "must be 'auto' or a pixel area > 0 for the hybrid");
+  lzb::validate(lzb);
+}
+
+PointParams HybridParams::pointParams(int width, int height) const {
+  const double lnPixels = std::log(double(width) * double(height));
+  PointParams p;
+  p.splat = splat;
+  p.samplesPerPixel = oversample * lnPixels / double(splat * splat);
+  p.thresholdPx = fallbackPx > 0.0 ? fallbackPx : double(splat * splat) / lnPixels;
+  p.dropBackfaces = dropBackfaces;
+  return p;
+}
+
+nlohmann::json HybridParams::toJson() const {
+  return {{"oversample", oversample},
+          {"splat", splat},
+          {"fallback", fallbackPx > 0.0 ? nlohmann::json(fallbackPx) : nlohmann::json("auto")},
+          {"backfaces", dropBackfaces ? "drop" : "keep"},
+          {"plane", lzb.dynamicPlane() ? nlohmann::json(lzb.costPlane ? "cost" : "auto")
+                                       : nlohmann::json(lzb.planeFraction)},
+          {"lzb_stage", toString(lzb.stage)}};
+}
+
+namespace {
+
+LeafAreas timedAreas(const LzbAccel& accel, double& seconds) {
+  Stopwatch clock;
+  LeafAreas areas(accel);
+  seconds = clock.seconds();
+  return areas;
+}
+
+}  // namespace
+
+HybridRenderer::HybridRenderer(const Scene& scene, const RenderOptions& options,
+                               const HybridParams& params)
+    : scene_(scene),
+      options_(options),
+      params_(params),
+      lzb_(scene, options, params.lzb),
+      areas_(timedAreas(lzb_.accel(), areasSeconds_)) {
+  params_.validate();
+  options_.threads = std::max(options_.threads, 1);
+}
+
+std::string HybridRenderer::decomposition() const {
+  return "every rank renders the near pass (z-buffer up to the partition plane) to know the "
+         "unfinished pixels; the octree leaves behind the plane that are point-sampled are dealt "
+         "to ranks as contiguous runs of equal sample count in cull order; screen tiles of " +
+         std::to_string(ScreenTiles::kDefaultSide) + "x" +
+         std::to_string(ScreenTiles::kDefaultSide) +
+         " pixels are dealt interleaved for the rays and each rank z-buffers its own PVL part; "
+         "the root composites by (depth, id)";
+}
+
+FrameStats HybridRenderer::setupStats() const {
+  FrameStats s = lzb_.setupStats();
+  s.addStage("leaf_areas", areasSeconds_);
+  s.setShared("leaf_area_bytes", double(areas_.memoryBytes()));
+  return s;
+}
+
+void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& share,
+                            Framebuffer& fb, FrameStats& stats) {
+  if (fb.width != camera.width() || fb.height != camera.height())
+    throw std::invalid_argument("hybrid: framebuffer and camera sizes differ");
+  LzbRenderer::Frame f;
+  f.camera = &camera;
+  f.share = share;
+  const PointParams pp = params_.pointParams(camera.width(), camera.height());
+  rule_ = std::make_unique<SampledLeafRule>(lzb_.accel(), areas_, camera.pixelsPerUnitAt(1.0),
+                                            pp.thresholdPx);
+  f.leafFilter = rule_.get();  // the cull leaves wholly sampled nodes out
+  Stopwatch clock;
+  lzb_.cull(f);
+  stats.addStage("cull", clock.lap());
+  lzb_.placePlane(f);
+  rule_->setPlane(f.zClip);
+  stats.addStage("plane", clock.lap());
+  lzb_.drawNearPass(f, fb);
+  stats.addStage("near", clock.lap());
+  lzb_.markUnfinished(f, fb);
+  stats.addStage("unfinished", clock.lap());
+  drawPoints(f, pp, frame, stats);
+  stats.addStage("points", clock.lap());
+  if (f.unfinished > 0) {
+    lzb_.projectFarObjects(f);
+    stats.addStage("oor_project", clock.lap());
+  }
+  lzb_.castFarRays(f);
+  stats.addStage("pvl_find", clock.lap());
+  lzb_.renderPvl(f, fb);
+  stats.addStage("pvl_render", clock.lap());
+  countPixels(f, fb, stats);
+  compositeNearer(fb, points_);
+  lzb_.combine(f, fb);
+  stats.addStage("combine", clock.lap());
+  lzb_.countFrame(f, stats);
+}
+
+void HybridRenderer::drawPoints(LzbRenderer::Frame& f, const PointParams& pp, int frame,
+                                FrameStats& stats) {
+  const Camera& camera = *f.camera;
+  const SampleStream stream(options_.seed, uint64_t(frame));
+  const std::vector<SampledLeaf> leaves =
+      sampledLeaves(lzb_.accel(), areas_, lzb_.culled(), *rule_, camera, pp, stream);
+  std::vector<double> costs(leaves.size());
+  double total = 0.0;
+  for (size_t i = 0; i < leaves.size(); ++i) total += costs[i] = double(leaves[i].samples);
+  const std::vector<uint32_t> mine = dealByCost(costs, f.share);
+  keys_.reset(camera.width(), camera.height(), scene_.expandedTriangles() > 0xffffffffull,
+              options_.threads);
+  const PointCounts pc = splatLeaves(lzb_.accel(), areas_, lzb_.culled(), leaves, mine, camera, pp,
+                                     stream, keys_, options_.threads);
+  points_.resize(camera.width(), camera.height());
+  keys_.resolve(points_, options_.threads);
+  stats.setShared("sampled_leaves", double(leaves.size()));
+  stats.setShared("samples_expected", total);
+  stats.setShared("fallback_px", pp.thresholdPx);
+  stats.addCount("sampled_leaves_drawn", double(mine.size()));
+  stats.addCount("samples_drawn", double(pc.drawn));
+  stats.addCount("samples_backfacing", double(pc.backfacing));
+  stats.addCount("samples_splatted", double(pc.splatted));
+}
+
+// Which pass finished each pixel of this rank's tiles: the near pass (shared), the samples or
+// the PVL (counted before compositing with the other ranks, whose samples may still win).
+void HybridRenderer::countPixels(const LzbRenderer::Frame& f, const Framebuffer& fb,
+                                 FrameStats& stats) const {
+  const ScreenTiles tiles(fb.width, fb.height);
+  const std::vector<uint8_t>& open = lzb_.unfinishedMask();
+  const int side = ScreenTiles::kDefaultSide, columns = tiles.columns();
+  uint64_t samplePixels = 0, pvlPixels = 0;
+#pragma omp parallel for schedule(static) num_threads(options_.threads) reduction(+ : samplePixels, pvlPixels)
+  for (int y = 0; y < fb.height; ++y)
+    for (int x = 0; x < fb.width; ++x) {
+      const int tile = (y / side) * columns + x / side;
+      const size_t i = fb.index(x, y);
+      if (tile % f.share.size != f.share.rank || !open[i]) continue;
+      if (points_.covered(i) && nearer(points_.depth[i], points_.id[i], fb.depth[i], fb.id[i]))
+        ++samplePixels;
+      else if (fb.covered(i))
+        ++pvlPixels;
+    }
+  stats.setShared("near_pixels", double(fb.size() - f.unfinished));
+  stats.addCount("sample_pixels", double(samplePixels));
+  stats.addCount("pvl_pixels", double(pvlPixels));
+}
+
+}  // namespace lzb::hybrid

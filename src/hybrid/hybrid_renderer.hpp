@@ -1,0 +1,70 @@
+#pragma once
+// --method hybrid: local z-buffering and the randomized z-buffer in one frame, composed from
+// their stages (raycast/lzb_renderer.hpp and the point pass of leaf_points.hpp):
+//   1. cull, partition plane, near scene by the native z-buffer clipped at the plane, unfinished
+//      pixels (local z-buffering's steps 1-4);
+//   2. behind the plane, the octree leaves whose triangles project below the fallback threshold
+//      are point-sampled into a key buffer (the randomized z-buffer's point pass);
+//   3. the rest of the far scene by object-oriented lazy ray casting with the coherent walk
+//      (local z-buffering's final stage) from the unfinished pixels: the walk skips the sampled
+//      leaves and nodes, so a ray only looks for the large triangles; its PVL is z-buffered at the
+//      unfinished pixels;
+//   4. the passes composited by the compositing key; colour from the IDs at the root.
+// Ranks: every rank renders the near pass; the sampled leaves and nodes are dealt by their sample
+// counts (mpi/decomposition.hpp), the screen tiles of the rays interleaved. Rays do not depend on
+// the samples (a ray stopped at its rank's nearest sample would look deeper on a rank holding
+// fewer samples), so the ranks' composite is the 1-rank image.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "raycast/lzb_renderer.hpp"
+#include "src/core/depth_key.hpp"
+#include "src/core/renderer.hpp"
+#include "src/hybrid/leaf_areas.hpp"
+#include "src/hybrid/leaf_points.hpp"
+
+namespace lzb::hybrid {
+
+struct HybridParams {
+  double oversample = 1.0;   // scales the ln(pixels) samples per pixel of projected area
+  int splat = 1;             // d
+  double fallbackPx = 0.0;   // sampled leaves' largest projected triangle; 0: d^2 / ln(pixels)
+  bool dropBackfaces = true;
+  LzbOptions lzb;            // the local z-buffering stages (final stage, native z-buffers)
+
+  // Throws InputError naming the option for out-of-range values.
+  void validate() const;
+  PointParams pointParams(int width, int height) const;
+  nlohmann::json toJson() const;
+};
+
+class HybridRenderer : public Renderer {
+ public:
+  HybridRenderer(const Scene& scene, const RenderOptions& options, const HybridParams& params);
+
+  std::string name() const override { return "hybrid"; }
+  std::string decomposition() const override;
+  void render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
+              FrameStats& stats) override;
+  FrameStats setupStats() const override;
+
+  const LzbRenderer& lzb() const { return lzb_; }
+
+ private:
+  // Step 2: the sampled leaves of this frame, this rank's share splatted into points_.
+  void drawPoints(LzbRenderer::Frame& f, const PointParams& pp, int frame, FrameStats& stats);
+  void countPixels(const LzbRenderer::Frame& f, const Framebuffer& fb, FrameStats& stats) const;
+
+  const Scene& scene_;
+  RenderOptions options_;
+  HybridParams params_;
+  LzbRenderer lzb_;
+  double areasSeconds_ = 0.0;  // before areas_: its construction sets it
+  LeafAreas areas_;
+  KeyBuffer keys_;
+  Framebuffer points_;  // this rank's samples (depth and ID)
+  std::unique_ptr<SampledLeafRule> rule_;
+};
+
+}  // namespace lzb::hybrid

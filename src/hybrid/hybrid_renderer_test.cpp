@@ -1,0 +1,111 @@
+// The hybrid method: exact where the scene has large triangles (the city), close to the
+// definition on sub-pixel geometry (a field of scanned-mesh instances), the same image for any
+// split over ranks, and a walk that really leaves the sampled geometry to the point pass.
+#include "src/hybrid/hybrid_renderer.hpp"
+
+#include <gtest/gtest.h>
+
+#include "raycast/lzb_test_util.hpp"
+#include "raycast/raycast_renderer.hpp"
+#include "raycast/ray_witness.hpp"
+#include "src/core/error.hpp"
+#include "src/core/shading.hpp"
+#include "src/image/metrics.hpp"
+#include "src/image/test_reference.hpp"
+
+namespace lzb {
+namespace {
+
+using hybrid::HybridParams;
+using hybrid::HybridRenderer;
+
+// Accuracy of `image` against the exact ray caster, witnessed by rays (the report's figure).
+Accuracy accuracy(const Scene& scene, const Camera& cam, Framebuffer image) {
+  RaycastRenderer raycast(scene, testing::lzbRenderOptions());
+  shadeFromIds(scene, cam, image);
+  const RayWitness witness(scene, raycast.embreeScene(), cam);
+  return compare(image, testing_util::renderReference(raycast, scene, cam), &witness);
+}
+
+// A field of 256 armadillos (13 M triangles): most triangles far smaller than a pixel.
+const Scene* field() {
+  static const Scene* scene = [] {
+    const std::string mesh = testing::scannedMesh("armadillo.off");
+    return mesh.empty() ? nullptr
+                        : new Scene(loadScene("builtin:replicated?mesh=" + mesh + "&k=16&levels=1", true));
+  }();
+  return scene;
+}
+
+TEST(HybridRenderer, IsExactOnTheCity) {
+  const Scene scene = loadScene("builtin:city?blocks=4", true);
+  HybridRenderer r(scene, testing::lzbRenderOptions(), HybridParams{});
+  for (int f : {0, 2}) {
+    const Camera cam = testing::pathFrame(scene, f, 4, 192, 144);
+    const Accuracy a = accuracy(scene, cam, testing::renderFrame(r, cam));
+    EXPECT_GE(a.correctRateCovered, 0.999) << "frame " << f;
+    EXPECT_EQ(a.missingPixels, 0u) << "frame " << f;
+  }
+}
+
+TEST(HybridRenderer, SubPixelFieldIsSampledAndShowsVisibleTriangles) {
+  const Scene* scene = field();
+  if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
+  HybridRenderer hybrid(*scene, testing::lzbRenderOptions(), HybridParams{});
+  LzbRenderer lzb(*scene, testing::lzbRenderOptions(), LzbOptions{});
+  const Camera cam = testing::pathFrame(*scene, 1, 4, 160, 120);
+  FrameStats hs, ls;
+  const Framebuffer image = testing::renderFrame(hybrid, cam, {}, &hs);
+  testing::renderFrame(lzb, cam, {}, &ls);
+  const Accuracy a = accuracy(*scene, cam, image);
+  EXPECT_GE(a.correctRateCovered, 0.95);  // the randomized z-buffer paper's 95-99 %
+  EXPECT_LE(a.missingPixels, a.coveredPixels / 100);
+  // The point pass took the field: samples show most covered pixels, and the walk skipped the
+  // sampled triangles instead of testing them.
+  EXPECT_GT(hs.shared.value("sampled_leaves", 0.0), 0.0);
+  EXPECT_GT(hs.counts.value("sample_pixels", 0.0), 0.5 * double(a.coveredPixels));
+  EXPECT_LT(hs.counts.value("ray_triangle_tests", 0.0), 0.5 * ls.counts.value("ray_triangle_tests", 0.0));
+  EXPECT_LT(hs.counts.value("pvl_size", 0.0), 0.1 * ls.counts.value("pvl_size", 0.0));
+}
+
+TEST(HybridRenderer, RankSharesCompositeToTheOneRankImageOnASampledField) {
+  const Scene* scene = field();
+  if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
+  const Camera cam = testing::pathFrame(*scene, 1, 4, 160, 120);
+  HybridRenderer one(*scene, testing::lzbRenderOptions(2), HybridParams{});
+  FrameStats alone;
+  const Framebuffer single = testing::renderFrame(one, cam, {}, &alone);
+  for (int size : {2, 3}) {
+    Framebuffer composite(cam.width(), cam.height());
+    double samples = 0.0, rays = 0.0;
+    for (int rank = 0; rank < size; ++rank) {
+      HybridRenderer r(*scene, testing::lzbRenderOptions(1), HybridParams{});
+      FrameStats stats;
+      const Framebuffer part = testing::renderFrame(r, cam, {rank, size}, &stats);
+      compositeNearer(composite, part);
+      samples += stats.counts.value("samples_drawn", 0.0);
+      rays += stats.counts.value("rays_cast", 0.0);
+      // Each rank did a share, not the whole.
+      EXPECT_LT(stats.counts.value("samples_drawn", 0.0), alone.counts.value("samples_drawn", 0.0));
+    }
+    EXPECT_EQ(composite.id, single.id) << size << " ranks";
+    EXPECT_EQ(composite.depth, single.depth) << size << " ranks";
+    EXPECT_EQ(samples, alone.counts.value("samples_drawn", -1.0)) << size << " ranks";
+    EXPECT_EQ(rays, alone.counts.value("rays_cast", -1.0)) << size << " ranks";
+  }
+}
+
+TEST(HybridRenderer, BadParametersNameTheOption) {
+  HybridParams p;
+  p.splat = 0;
+  EXPECT_THROW(p.validate(), InputError);
+  p = {};
+  p.oversample = -1.0;
+  EXPECT_THROW(p.validate(), InputError);
+  p = {};
+  p.lzb.planeFraction = 2.0;
+  EXPECT_THROW(p.validate(), InputError);
+}
+
+}  // namespace
+}  // namespace lzb
