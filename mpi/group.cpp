@@ -21,6 +21,27 @@ Group Group::world() {
   return g;
 }
 
+SubGroups::SubGroups(const Group& parent, int count)
+    : group_(parent), count_(count), parentSize_(parent.size) {
+  if (count <= 1) return;
+  index_ = int(int64_t(parent.rank) * count / parent.size);
+  LZB_MPI_CALL(MPI_Comm_split(parent.comm, index_, parent.rank, &group_.comm));
+  owned_ = true;
+  LZB_MPI_CALL(MPI_Comm_rank(group_.comm, &group_.rank));
+  LZB_MPI_CALL(MPI_Comm_size(group_.comm, &group_.size));
+  // Errors come back as codes here too.
+  MPI_Comm_set_errhandler(group_.comm, MPI_ERRORS_RETURN);
+}
+
+SubGroups::~SubGroups() {
+  if (owned_) MPI_Comm_free(&group_.comm);
+}
+
+int SubGroups::rootOf(int k) const {
+  // The smallest rank r with r * count / size == k.
+  return int((int64_t(k) * parentSize_ + count_ - 1) / count_);
+}
+
 Session::Session(int* argc, char*** argv) {
   int provided = 0;
   // Only the main thread calls MPI; OpenMP threads never do.

@@ -26,6 +26,26 @@ struct Group {
   void barrier() const { LZB_MPI_CALL(MPI_Barrier(comm)); }
 };
 
+// The ranks of `parent` cut into `count` contiguous groups of (nearly) equal size; this rank's
+// group as a Group of its own (its communicator freed with this object). count 1: the parent.
+class SubGroups {
+ public:
+  SubGroups(const Group& parent, int count);
+  ~SubGroups();
+  SubGroups(const SubGroups&) = delete;
+  SubGroups& operator=(const SubGroups&) = delete;
+  const Group& group() const { return group_; }
+  int index() const { return index_; }  // this rank's group, 0..count-1
+  int count() const { return count_; }
+  // The parent rank of group k's root (its first rank).
+  int rootOf(int k) const;
+
+ private:
+  Group group_;
+  int index_ = 0, count_ = 1, parentSize_ = 1;
+  bool owned_ = false;
+};
+
 // MPI_Init_thread on construction, MPI_Finalize on destruction (unless already finalized).
 class Session {
  public:

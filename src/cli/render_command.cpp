@@ -10,6 +10,7 @@
 #include "mpi/failure.hpp"
 #include "mpi/frame_driver.hpp"
 #include "raycast/ray_witness.hpp"
+#include "src/cli/frame_transfer.hpp"
 #include "src/cli/methods.hpp"
 #include "src/cli/report.hpp"
 #include "src/core/atomic_file.hpp"
@@ -47,6 +48,10 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
   c.add_option("--composite", a.composite,
                "how ranks composite at the root: reduce (MPI_Reduce of keys) | bswap (binary "
                "swap) | direct (direct send of stripes) | tiles (touched tiles to the root)")
+      ->capture_default_str();
+  c.add_option("--frame-groups", a.frameGroups,
+               "frame-parallel batches: the ranks form this many groups, frame f goes to group f "
+               "mod G, each group splits its frame; the first rank writes every frame")
       ->capture_default_str();
   c.add_option("--threads,-t", a.threads, "threads per rank (0: the cores this rank owns)")
       ->capture_default_str();
@@ -149,31 +154,53 @@ void addAccuracy(const mpi::FrameDriver& driver, const Judge& judge, const Camer
   frame["reference_subsample_seconds"] = subsampleSeconds;
 }
 
-// The frame loop: every rank renders its share of each frame; the root writes images and records.
-void renderFrames(const RenderArgs& a, const mpi::Group& g, const Scene& scene, const CameraSpec& base,
-                  int width, int height, Renderer& renderer, const Judge& judge, Report& report,
-                  bool talk) {
-  const mpi::FrameDriver driver(g, scene, mpi::parseCompositeStrategy(a.composite, "--composite"));
+// Renders frame f on the ranks of the driver's group: its root gets the image, the report entry
+// and, with --subsamples, the frame's own sub-samples.
+FrameResult renderFrame(const RenderArgs& a, const mpi::FrameDriver& driver, const Camera& camera,
+                        Renderer& renderer, const Judge& judge, int f) {
+  FrameResult r;
+  r.entry = driver.render(renderer, camera, f, r.image);
+  if (a.subsamples) {
+    double seconds = 0.0;
+    r.own = renderSubsamples(driver, renderer, camera, f, r.image, seconds);
+    if (driver.group().root()) r.entry["subsample_seconds"] = seconds;
+  }
+  if (judge.reference) addAccuracy(driver, judge, camera, f, r.image, r.entry);
+  return r;
+}
+
+// The frame loop: frames are dealt to the frame groups round-robin (frame f to group f mod G),
+// every rank of a group renders its share of the group's frame, and the job's root writes every
+// frame, in order, and records it.
+void renderFrames(const RenderArgs& a, const mpi::Group& world, const mpi::SubGroups& groups,
+                  const Scene& scene, const CameraSpec& base, int width, int height,
+                  Renderer& renderer, const Judge& judge, Report& report, bool talk) {
+  const mpi::FrameDriver driver(groups.group(), scene,
+                                mpi::parseCompositeStrategy(a.composite, "--composite"));
+  const auto cameraOf = [&](int f) {
+    const CameraSpec spec = withClipPlanes(pathCamera(scene, base, f, a.frames), scene.bounds());
+    return Camera(spec, width, height, "camera (frame " + std::to_string(f) + ")");
+  };
   Progress progress("rendering " + std::to_string(a.frames) + " frames", uint64_t(a.frames),
                     talk && a.frames > 1);
-  for (int f = 0; f < a.frames; ++f) {
-    const CameraSpec spec = withClipPlanes(pathCamera(scene, base, f, a.frames), scene.bounds());
-    const Camera camera(spec, width, height, "camera (frame " + std::to_string(f) + ")");
-    Framebuffer image;
-    nlohmann::json frame = driver.render(renderer, camera, f, image);
-    ReferenceFrame own;  // this frame's own sub-samples, with --subsamples
-    if (a.subsamples) {
-      double seconds = 0.0;
-      own = renderSubsamples(driver, renderer, camera, f, image, seconds);
-      if (g.root()) frame["subsample_seconds"] = seconds;
+  for (int first = 0; first < a.frames; first += groups.count()) {
+    const int f = first + groups.index();
+    FrameResult mine;
+    if (f < a.frames) mine = renderFrame(a, driver, cameraOf(f), renderer, judge, f);
+    for (int k = 0; k < groups.count() && first + k < a.frames; ++k) {
+      const int from = groups.rootOf(k);
+      if (world.root()) {
+        FrameResult r = from == 0 ? std::move(mine) : receiveFrame(world, from);
+        const Camera camera = cameraOf(first + k);
+        const FrameOrigin origin{camera, scene.expandedTriangles()};
+        writeFrame(r.image, a.out, first + k, a.subsamples ? &r.own : nullptr, &origin);
+        if (groups.count() > 1) r.entry["frame_group"] = k;
+        report.addFrame(first + k, camera, std::move(r.entry), r.image);
+        progress.add();
+      } else if (world.rank == from) {
+        sendFrame(world, 0, mine);
+      }
     }
-    if (judge.reference) addAccuracy(driver, judge, camera, f, image, frame);
-    if (g.root()) {
-      const FrameOrigin origin{camera, scene.expandedTriangles()};
-      writeFrame(image, a.out, f, a.subsamples ? &own : nullptr, &origin);
-      report.addFrame(f, camera, frame, image);
-    }
-    progress.add();
   }
   progress.done();
 }
@@ -194,8 +221,11 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
   double loadSeconds = 0.0, setupSeconds = 0.0;
   mpi::agree(g, [&] {
     validate(a);
+    require(a.frameGroups >= 1 && a.frameGroups <= g.size, "--frame-groups",
+            "must be in [1, " + std::to_string(g.size) + "] (the number of ranks)");
     if (g.root()) checkOutput(a.out);
   });
+  const mpi::SubGroups groups(g, a.frameGroups);
   mpi::agree(g, [&] {
     Stopwatch loadClock;
     scene = loadScene(a.scene, !talk);
@@ -224,7 +254,8 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
       reference = methodNamed(a.reference, "--reference").create(scene, options);
       judge.reference = reference.get();
       // Built once here (set-up time), unless the raycast reference lends its Embree scene.
-      if (g.root()) judge.witness = std::make_unique<WitnessScene>(scene, reference.get(), options.threads);
+      if (groups.group().root())
+        judge.witness = std::make_unique<WitnessScene>(scene, reference.get(), options.threads);
     }
     setupSeconds = setupClock.seconds();
   });
@@ -238,8 +269,10 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
   report.setSetup(loadSeconds, setupSeconds, methodSetup);
   if (judge.witness) report.setWitness(*judge.witness);
   try {
-    renderFrames(a, g, scene, base, width, height, *renderer, judge, report, talk);
+    Stopwatch frames;
+    renderFrames(a, g, groups, scene, base, width, height, *renderer, judge, report, talk);
     if (g.root()) {
+      report.setThroughput(frames.seconds());
       report.setTotal(total.seconds());
       report.write(fs::path(a.out) / "report.json");
       report.printSummary(stdout);

@@ -17,6 +17,7 @@ struct RenderArgs {
   bool subsamples = false;  // store the 4x4 sub-sample IDs and box colour in each EXR
   std::string out = "out";
   std::string composite = "reduce";  // mpi/composite.hpp
+  int frameGroups = 1;                // frame-parallel batches
   int threads = 0;  // 0: the cores this rank owns
   uint64_t seed = 1;
   int width = 0, height = 0;  // 0: the scene file's, else 640x480

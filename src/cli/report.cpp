@@ -43,6 +43,7 @@ Report::Report(const RenderArgs& a, const RenderOptions& options, const mpi::Gro
             {{"seed", a.seed},
              {"frames", a.frames},
              {"composite", a.composite},
+             {"frame_groups", a.frameGroups},
              {"reference", a.reference.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.reference)},
              {"subsamples", a.subsamples},
              {"fov", a.fov},
@@ -103,6 +104,8 @@ void Report::setTotal(double seconds) {
   json_["summary"] = {{"total_seconds", seconds},
                       {"mean_frame_seconds", mean},
                       {"median_frame_seconds", median(times)},
+                      {"frame_loop_seconds", loopSeconds_},
+                      {"frames_per_second", loopSeconds_ > 0.0 ? double(times.size()) / loopSeconds_ : 0.0},
                       {"peak_memory_bytes_root", peakMemoryBytes()}};
   if (haveAccuracy) json_["summary"]["min_correct_rate_covered"] = rate;
 }

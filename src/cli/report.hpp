@@ -27,6 +27,8 @@ class Report {
   // setup_seconds when it is its own).
   void setWitness(const WitnessScene& witness);
   void addFrame(int frame, const Camera& camera, nlohmann::json entry, const Framebuffer& image);
+  // Wall time of the frame loop (all frames, all frame groups): frames per second.
+  void setThroughput(double loopSeconds) { loopSeconds_ = loopSeconds; }
   void setTotal(double seconds);
   void write(const std::filesystem::path& path) const;  // atomically
   void printSummary(std::FILE* out) const;
@@ -34,6 +36,7 @@ class Report {
 
  private:
   nlohmann::json json_;
+  double loopSeconds_ = 0.0;
   std::string out_;
 };
 
