@@ -1,0 +1,117 @@
+"""Helpers the run scripts share: rendering through `lzb render` (under mpirun for several ranks),
+waiting for a quiet machine, CSV files with their command line, gnuplot, and the machine's
+memory-copy rate measured in the same run."""
+import csv
+import json
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+LZB = os.path.join(os.environ.get("LZB_BUILD", os.path.join(ROOT, "build")), "lzb")
+DATA = os.path.join(ROOT, "build", "data")
+# Idle OpenMP threads must not spin on the cores the other ranks and llvmpipe need.
+ENV = dict(os.environ, OMP_WAIT_POLICY="passive", OMPI_ALLOW_RUN_AS_ROOT="1",
+           OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+CORES = os.cpu_count() or 1
+
+
+def idle_fraction(seconds=2.0):
+    """Share of CPU time the machine spent idle over the next `seconds` (/proc/stat)."""
+    def sample():
+        with open("/proc/stat") as f:
+            vals = [int(v) for v in f.readline().split()[1:]]
+        return vals[3] + vals[4], sum(vals)
+    i0, t0 = sample()
+    time.sleep(seconds)
+    i1, t1 = sample()
+    return (i1 - i0) / max(t1 - t0, 1)
+
+
+def wait_quiet(limit_s=600):
+    """Starts a measurement only on a machine >= 85 % idle (it is shared), for at most limit_s.
+    --no-wait skips it (a functional check, not a measurement)."""
+    if "--no-wait" in sys.argv:
+        return False
+    start = time.time()
+    while time.time() - start < limit_s:
+        if idle_fraction() >= 0.85:
+            return True
+        time.sleep(5)
+    print("warning: the machine stayed busy; measuring anyway", flush=True)
+    return False
+
+
+def render(scene, args, ranks=1, threads=1, quiet_wait=True):
+    """Runs lzb render (under mpirun for ranks > 1); returns (shown command, report)."""
+    if quiet_wait:
+        wait_quiet()
+    out = tempfile.mkdtemp(prefix="lzb-run-")
+    try:
+        cmd = [LZB, "render", scene, *args, "--threads", str(threads), "--quiet", "--out", out]
+        if ranks > 1:
+            cmd = ["mpirun", "-n", str(ranks), "--oversubscribe", "--bind-to", "none", *cmd]
+        subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, env=ENV)
+        with open(os.path.join(out, "report.json")) as f:
+            rep = json.load(f)
+    finally:
+        shutil.rmtree(out, ignore_errors=True)
+    shown = " ".join(c if c != out else "OUT" for c in cmd).replace(ROOT + "/", "")
+    return shown, rep
+
+
+def median(xs):
+    xs = list(xs)
+    return statistics.median(xs) if xs else 0.0
+
+
+def memcpy_rate(megabytes=256, repeats=5):
+    """Bytes per second of one large copy (the best of `repeats`), measured now."""
+    src = bytearray(os.urandom(1 << 20)) * megabytes
+    dst = bytearray(len(src))
+    view_src, view_dst = memoryview(src), memoryview(dst)
+    best = float("inf")
+    for _ in range(repeats):
+        t = time.perf_counter()
+        view_dst[:] = view_src
+        best = min(best, time.perf_counter() - t)
+    return len(src) / best
+
+
+def write_csv(path, rows, fields, commands):
+    """CSV with the command lines that made it as leading # lines."""
+    with open(path, "w", newline="") as f:
+        f.write(f"# made by: python3 {' '.join(sys.argv).replace(ROOT + '/', '')}\n")
+        for c in commands:
+            f.write(f"# {c}\n")
+        w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
+        w.writeheader()
+        for r in rows:
+            w.writerow(r)
+
+
+def read_csv(path):
+    with open(path) as f:
+        return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+def gnuplot(script):
+    if shutil.which("gnuplot") is None:
+        print("gnuplot missing (bash scripts/install-deps.sh --bench): no plot", flush=True)
+        return
+    subprocess.run(["gnuplot"], input=script.encode(), check=True)
+
+
+def datafile(blocks):
+    """A gnuplot data file of blocks (lists of rows of numbers), blocks separated by 2 blank lines."""
+    f = tempfile.NamedTemporaryFile("w", suffix=".dat", delete=False)
+    for block in blocks:
+        for row in block:
+            f.write(" ".join(str(v) for v in row) + "\n")
+        f.write("\n\n")
+    f.close()
+    return f.name

@@ -1,0 +1,161 @@
+#!/usr/bin/env python3
+"""Speedup study: ranks 1, 2 (3 and 4 oversubscribe this 2-core machine: marked) x threads 1, 2,
+for the hybrid method and each method alone, on scenes of ~2 M (city), ~2*10^7 (a field of 400
+instanced armadillos) and 2.2*10^12 (instanced chessboard) triangles, at 640x480 and 1920x1080.
+Per configuration: the median frame time (frames after the first), its speedup and parallel
+efficiency against 1 rank x 1 thread, and the per-stage breakdown: render (the slowest rank's
+stages), composite, shade (at the root), and imbalance (the slowest rank's render time minus the
+mean over ranks).
+
+Usage: python3 runs/speedup/run.py [--quick] [--plot-only] [--methods=a,b] [--scenes=a,b]
+       (from the repository root, after scripts/build.sh and scripts/fetch-test-meshes.sh;
+       plots need gnuplot). The same command on a cluster: see runs/speedup/README.md.
+Writes runs/speedup/speedup.csv, stages.csv, speedup.png and stages.png.
+"""
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import common  # noqa: E402
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+QUICK = "--quick" in sys.argv
+FRAMES = 3 if QUICK else 6
+ARMADILLO = os.path.join(common.DATA, "armadillo.off")
+SCENES = {
+    "city": "builtin:city",
+    "field": f"builtin:replicated?mesh={ARMADILLO}&k=20&levels=1",
+    "chessboard": "builtin:chessboard?n=1048576",
+}
+# The per-leaf cull of lzb and the hybrid refuses 10^12-triangle instancing (too many visible
+# instance paths), and no z-buffer draws it: those combinations are skipped and said so.
+CANNOT = {("chessboard", "zbuffer"), ("chessboard", "lzb"), ("chessboard", "hybrid")}
+METHODS = ["hybrid", "lzb", "rzb", "raycast", "zbuffer"]
+SIZES = [(640, 480)] if QUICK else [(640, 480), (1920, 1080)]
+CONFIGS = [(1, 1), (1, 2), (2, 1)] if QUICK else [(1, 1), (1, 2), (2, 1), (3, 1), (4, 1)]
+
+
+def option(name, default):
+    for a in sys.argv[1:]:
+        if a.startswith(f"--{name}="):
+            return a.split("=", 1)[1].split(",")
+    return default
+
+
+def breakdown(frames):
+    """Medians over frames of the frame time and its parts."""
+    parts = {"frame_s": [], "render_s": [], "composite_s": [], "shade_s": [], "imbalance_s": []}
+    for f in frames:
+        per_rank = [sum(v for k, v in r["stages"].items() if k not in ("composite", "shade"))
+                    for r in f["ranks"]]
+        parts["frame_s"].append(f["seconds"])
+        parts["render_s"].append(max(per_rank))
+        parts["composite_s"].append(f["stages"].get("composite", 0.0))
+        parts["shade_s"].append(f["stages"].get("shade", 0.0))
+        parts["imbalance_s"].append(max(per_rank) - sum(per_rank) / len(per_rank))
+    return {k: common.median(v) for k, v in parts.items()}
+
+
+def run():
+    methods = option("methods", METHODS)
+    scenes = option("scenes", list(SCENES))
+    rows, stage_rows, commands = [], [], []
+    for scene in scenes:
+        for (w, h) in SIZES:
+            for method in methods:
+                if (scene, method) in CANNOT:
+                    print(f"{scene} {method}: skipped (cannot render this scene)", flush=True)
+                    continue
+                base = None
+                for ranks, threads in CONFIGS:
+                    shown, rep = common.render(
+                        SCENES[scene], ["--method", method, "--frames", str(FRAMES), "--width",
+                                        str(w), "--height", str(h)], ranks=ranks, threads=threads)
+                    commands.append(shown)
+                    frames = rep["frames"][1:] or rep["frames"]
+                    b = breakdown(frames)
+                    base = base or b["frame_s"]
+                    workers = ranks * threads
+                    row = {"scene": scene, "triangles": rep["scene"]["triangles_expanded"],
+                           "width": w, "height": h, "method": method, "ranks": ranks,
+                           "threads": threads, "oversubscribed": int(workers > common.CORES),
+                           **b, "speedup": base / b["frame_s"],
+                           "efficiency": base / b["frame_s"] / workers}
+                    rows.append(row)
+                    for name in {k for f in frames for k in f["stages"]}:
+                        stage_rows.append({"scene": scene, "width": w, "height": h, "method": method,
+                                           "ranks": ranks, "threads": threads, "stage": name,
+                                           "seconds": common.median(f["stages"].get(name, 0.0) for f in frames)})
+                    print(f"{scene} {w}x{h} {method:8s} {ranks}x{threads}: {b['frame_s'] * 1e3:8.1f} ms "
+                          f"(x{row['speedup']:.2f}; render {b['render_s'] * 1e3:.1f}, composite "
+                          f"{b['composite_s'] * 1e3:.1f}, shade {b['shade_s'] * 1e3:.1f}, imbalance "
+                          f"{b['imbalance_s'] * 1e3:.1f} ms)", flush=True)
+    common.write_csv(os.path.join(HERE, "speedup.csv"), rows,
+                     ["scene", "triangles", "width", "height", "method", "ranks", "threads",
+                      "oversubscribed", "frame_s", "render_s", "composite_s", "shade_s",
+                      "imbalance_s", "speedup", "efficiency"], commands)
+    common.write_csv(os.path.join(HERE, "stages.csv"), stage_rows,
+                     ["scene", "width", "height", "method", "ranks", "threads", "stage", "seconds"],
+                     commands)
+
+
+def plot():
+    rows = common.read_csv(os.path.join(HERE, "speedup.csv"))
+    combos = sorted({(r["scene"], int(r["width"]), int(r["height"])) for r in rows})
+    methods = [m for m in METHODS if any(r["method"] == m for r in rows)]
+    panels = []
+    for scene, w, h in combos:
+        blocks = []
+        for m in methods:
+            pts = [(int(r["ranks"]) * int(r["threads"]) + (0.1 if int(r["threads"]) > 1 else 0.0),
+                    float(r["speedup"])) for r in rows
+                   if r["scene"] == scene and int(r["width"]) == w and r["method"] == m]
+            blocks.append(sorted(pts) or [(1, 1)])
+        data = common.datafile(blocks)
+        lines = ", ".join(f"'{data}' index {i} with linespoints title '{m}'" for i, m in enumerate(methods))
+        panels.append(f"set title '{scene} {w}x{h}'\nplot {lines}, x with lines dt 2 lc 'gray' title 'ideal'\n")
+    common.gnuplot(f"""
+set terminal pngcairo size 1600,{400 * ((len(combos) + 2) // 3)} font ',10'
+set output '{os.path.join(HERE, "speedup.png")}'
+set multiplot layout {(len(combos) + 2) // 3},3 title 'Speedup over 1 rank x 1 thread (workers = ranks x threads; x.1 = 2 threads per rank; > 2 workers oversubscribe 2 cores)'
+set xlabel 'workers'
+set ylabel 'speedup'
+set xrange [0.5:4.5]
+set yrange [0:4.5]
+set key top left
+set grid
+{''.join(panels)}
+unset multiplot
+""")
+    # Where the time goes: the hybrid's parts per configuration (city, both sizes).
+    blocks, labels = [], []
+    for r in rows:
+        if r["method"] == "hybrid" and r["scene"] == "city":
+            labels.append(f"{r['width']}p {r['ranks']}x{r['threads']}")
+            blocks.append((len(labels) - 1, float(r["render_s"]) * 1e3 - float(r["imbalance_s"]) * 1e3,
+                           float(r["imbalance_s"]) * 1e3, float(r["composite_s"]) * 1e3,
+                           float(r["shade_s"]) * 1e3))
+    if not blocks:
+        return
+    data = common.datafile([blocks])
+    xtics = ", ".join(f"'{l}' {i}" for i, l in enumerate(labels))
+    common.gnuplot(f"""
+set terminal pngcairo size 1200,500 font ',10'
+set output '{os.path.join(HERE, "stages.png")}'
+set title 'hybrid on the city: where a frame goes (ms; ranks x threads)'
+set style data histograms
+set style histogram rowstacked
+set style fill solid 0.8 border -1
+set boxwidth 0.7
+set xtics ({xtics}) rotate by -30
+set ylabel 'ms'
+set key top right
+set grid y
+plot '{data}' using 2 title 'render (mean rank)', '' using 3 title 'imbalance', '' using 4 title 'composite', '' using 5 title 'shade (root)'
+""")
+
+
+if __name__ == "__main__":
+    if "--plot-only" not in sys.argv:
+        run()
+    plot()
