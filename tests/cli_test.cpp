@@ -280,6 +280,18 @@ TEST(Info, CountsInstancedTrianglesAndBuildsOctrees) {
   EXPECT_GT(info["memory"]["scene_bytes"].get<double>(), 0.0);
 }
 
+TEST(Limits, MeasuresCopyScatterAndKeyRates) {
+  const RunResult r = runLzb("limits --seconds 0.1 --width 64 --height 48 --threads 1");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(r.output);
+  EXPECT_GT(j["memcpy_bytes_per_s"].get<double>(), 1e8);
+  EXPECT_GT(j["atomic_min_scatter_per_s"].get<double>(), 1e5);
+  EXPECT_GT(j["key_writes_per_s"].get<double>(), 1e6);
+  const RunResult bad = runLzb("limits --seconds 0");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.output.find("--seconds"), std::string::npos) << bad.output;
+}
+
 // Bad input: a clear message naming what is wrong, exit status 2, and no output written.
 struct BadCase {
   std::string name, args, mustMention;

@@ -8,6 +8,7 @@
 #include "mpi/group.hpp"
 #include "src/cli/compare_command.hpp"
 #include "src/cli/info_command.hpp"
+#include "src/cli/limits_command.hpp"
 #include "src/cli/omp_wait_policy.hpp"
 #include "src/cli/render_command.hpp"
 #include "src/core/error.hpp"
@@ -36,6 +37,10 @@ int main(int argc, char** argv) {
   lzb::InfoArgs info;
   addInfoOptions(*app.add_subcommand("info", "triangle counts, bounds, octree statistics, memory"),
                  info);
+  lzb::LimitsArgs limits;
+  addLimitsOptions(*app.add_subcommand("limits", "what this machine can do at most: memory copy, "
+                                                 "atomic-min scatter, key writes (JSON)"),
+                   limits);
   lzb::CompareArgs compare;
   addCompareOptions(*app.add_subcommand("compare", "accuracy of image A against reference B (JSON); "
                                                     "with --scene, witnessed by rays as in the report"),
@@ -56,10 +61,12 @@ int main(int argc, char** argv) {
     });
     if (helpShown) return 0;
     if (app.got_subcommand("render")) return runRender(render, g, commandLine);
-    // info and compare: work of each rank alone, printed by the root.
+    // info, limits and compare: work of each rank alone, printed by the root.
     int status = 0;
     lzb::mpi::agree(g, [&] {
-      status = app.got_subcommand("info") ? runInfo(info, g) : runCompare(compare, g);
+      if (app.got_subcommand("info")) status = runInfo(info, g);
+      else if (app.got_subcommand("limits")) status = runLimits(limits, g);
+      else status = runCompare(compare, g);
     });
     return status;
   } catch (const lzb::mpi::JobFailed& e) {
