@@ -4,20 +4,9 @@
 
 namespace lzb {
 
-namespace {
-
-class RaycastMethod : public Method {
- public:
-  std::string name() const override { return "raycast"; }
-  std::string summary() const override { return "exact: Embree primary rays"; }
-  bool exact() const override { return true; }
-  std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const override {
-    return std::make_unique<RaycastRenderer>(scene, options);
-  }
-};
-
-}  // namespace
-
-std::unique_ptr<Method> makeRaycastMethod() { return std::make_unique<RaycastMethod>(); }
+std::unique_ptr<Method> makeRaycastMethod() {
+  return std::make_unique<PlainMethod<RaycastRenderer>>("raycast", "exact: Embree primary rays",
+                                                       /*exact=*/true);
+}
 
 }  // namespace lzb

@@ -15,4 +15,7 @@ inline void require(bool cond, const std::string& where, const std::string& what
   if (!cond) throw InputError(where + ": " + what);
 }
 
+// The finite number `text` is, whole; else an InputError naming `option` and what was expected.
+double parseNumber(const std::string& text, const std::string& option, const std::string& expected);
+
 }  // namespace lzb

@@ -1,6 +1,5 @@
 #include "src/hybrid/hybrid_method.hpp"
 
-#include <cmath>
 #include <string>
 
 #include "src/core/error.hpp"
@@ -34,19 +33,11 @@ class HybridMethod : public Method {
   }
   void validate() override {
     params_.oversample = oversample_;
-    if (fallback_ == "auto") {
-      params_.fallbackPx = 0.0;
-    } else {
-      size_t used = 0;
-      double v = 0.0;
-      try {
-        v = std::stod(fallback_, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      require(used == fallback_.size() && used > 0 && std::isfinite(v) && v > 0.0, "--fallback",
-              "expected 'auto' or a pixel area > 0 for the hybrid, got '" + fallback_ + "'");
-      params_.fallbackPx = v;
+    params_.fallbackPx = 0.0;
+    if (fallback_ != "auto") {
+      const std::string expected = "'auto' or a pixel area > 0 for the hybrid";
+      params_.fallbackPx = parseNumber(fallback_, "--fallback", expected);
+      require(params_.fallbackPx > 0.0, "--fallback", "expected " + expected + ", got '" + fallback_ + "'");
     }
     require(backfaces_ == "drop" || backfaces_ == "keep", "--backfaces",
             "expected drop or keep, got '" + backfaces_ + "'");

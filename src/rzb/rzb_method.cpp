@@ -1,6 +1,5 @@
 #include "src/rzb/rzb_method.hpp"
 
-#include <cmath>
 #include <memory>
 
 #include "src/core/error.hpp"
@@ -10,24 +9,6 @@ namespace lzb {
 
 namespace rzb {
 
-namespace {
-
-// A finite number, or an InputError naming the option.
-double number(const std::string& text, const std::string& option, const std::string& expected) {
-  size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  require(used == text.size() && used > 0 && std::isfinite(v), option,
-          "expected " + expected + ", got '" + text + "'");
-  return v;
-}
-
-}  // namespace
-
 RzbParams parseRzbOptions(const std::string& eps, double oversample, int splat,
                           const std::string& fallback, const std::string& reconstruct,
                           double areaRatio, double cacheMb, const std::string& backfaces) {
@@ -35,14 +16,14 @@ RzbParams parseRzbOptions(const std::string& eps, double oversample, int splat,
   if (eps == "auto") {
     p.autoEps = true;
   } else {
-    p.eps = number(eps, "--eps", "a number > 1 or 'auto'");
+    p.eps = parseNumber(eps, "--eps", "a number > 1 or 'auto'");
   }
   p.oversample = oversample;
   p.splat = splat;
   if (fallback == "off") {
     p.fallback = false;
   } else if (fallback != "auto") {
-    p.fallbackPx = number(fallback, "--fallback", "'auto', 'off' or a pixel area > 0");
+    p.fallbackPx = parseNumber(fallback, "--fallback", "'auto', 'off' or a pixel area > 0");
     require(p.fallbackPx > 0.0, "--fallback", "must be > 0 pixels, got '" + fallback + "'");
   }
   if (reconstruct == "auto") {
