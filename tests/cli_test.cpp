@@ -292,6 +292,23 @@ TEST(Limits, MeasuresCopyScatterAndKeyRates) {
   EXPECT_NE(bad.output.find("--seconds"), std::string::npos) << bad.output;
 }
 
+TEST(Export, WritesTheExpandedSceneAsAMeshThatRendersTheSame) {
+  const fs::path dir = freshDir("export");
+  const RunResult r = runLzb("export 'builtin:sphereflake?depth=1' " + (dir / "flake.ply").string() + " --quiet");
+  ASSERT_EQ(r.status, 0) << r.output;
+  // The PLY loads back with every triangle (instances expanded) and renders the same IDs.
+  const RunResult info = runLzb("info " + (dir / "flake.ply").string() + " --json --quiet");
+  ASSERT_EQ(info.status, 0) << info.output;
+  const RunResult orig = runLzb("info 'builtin:sphereflake?depth=1' --json --quiet");
+  EXPECT_EQ(nlohmann::json::parse(info.output)["triangles_expanded"],
+            nlohmann::json::parse(orig.output)["triangles_expanded"]);
+  const RunResult big = runLzb("export 'builtin:chessboard?n=1048576' " + (dir / "big.ply").string() +
+                               " --quiet");
+  EXPECT_EQ(big.status, 2) << big.output;
+  EXPECT_NE(big.output.find("--max-triangles"), std::string::npos) << big.output;
+  EXPECT_FALSE(fs::exists(dir / "big.ply"));
+}
+
 // Bad input: a clear message naming what is wrong, exit status 2, and no output written.
 struct BadCase {
   std::string name, args, mustMention;

@@ -7,6 +7,7 @@
 #include "mpi/failure.hpp"
 #include "mpi/group.hpp"
 #include "src/cli/compare_command.hpp"
+#include "src/cli/export_command.hpp"
 #include "src/cli/info_command.hpp"
 #include "src/cli/limits_command.hpp"
 #include "src/cli/omp_wait_policy.hpp"
@@ -41,6 +42,9 @@ int main(int argc, char** argv) {
   addLimitsOptions(*app.add_subcommand("limits", "what this machine can do at most: memory copy, "
                                                  "atomic-min scatter, key writes (JSON)"),
                    limits);
+  lzb::ExportArgs exportArgs;
+  addExportOptions(*app.add_subcommand("export", "the fully instanced scene as one binary PLY mesh"),
+                   exportArgs);
   lzb::CompareArgs compare;
   addCompareOptions(*app.add_subcommand("compare", "accuracy of image A against reference B (JSON); "
                                                     "with --scene, witnessed by rays as in the report"),
@@ -61,11 +65,12 @@ int main(int argc, char** argv) {
     });
     if (helpShown) return 0;
     if (app.got_subcommand("render")) return runRender(render, g, commandLine);
-    // info, limits and compare: work of each rank alone, printed by the root.
+    // info, limits, export and compare: work of each rank alone, written by the root.
     int status = 0;
     lzb::mpi::agree(g, [&] {
       if (app.got_subcommand("info")) status = runInfo(info, g);
       else if (app.got_subcommand("limits")) status = runLimits(limits, g);
+      else if (app.got_subcommand("export")) status = runExport(exportArgs, g);
       else status = runCompare(compare, g);
     });
     return status;

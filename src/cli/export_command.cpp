@@ -1,0 +1,77 @@
+#include "src/cli/export_command.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <vector>
+
+#include "src/core/atomic_file.hpp"
+#include "src/core/error.hpp"
+#include "src/scene/load.hpp"
+
+namespace lzb {
+
+namespace {
+
+#pragma pack(push, 1)
+struct PlyFace {
+  uint8_t count = 3;
+  int32_t index[3];
+  uint8_t rgb[3];
+};
+#pragma pack(pop)
+
+void writePly(const Scene& scene, const std::filesystem::path& path) {
+  const std::vector<DrawItem> items = flattenScene(scene);
+  const uint64_t triangles = scene.expandedTriangles();
+  std::ofstream out(path, std::ios::binary);
+  out << "ply\nformat binary_little_endian 1.0\ncomment lzb export of " << scene.source
+      << "\nelement vertex " << 3 * triangles << "\nproperty float x\nproperty float y\nproperty float z\n"
+      << "element face " << triangles
+      << "\nproperty list uchar int vertex_indices\nproperty uchar red\nproperty uchar green\n"
+         "property uchar blue\nend_header\n";
+  for (const DrawItem& item : items) {
+    const Mesh& mesh = scene.nodes[item.node].mesh;
+    for (const glm::vec3& p : mesh.positions) {
+      const glm::vec3 w(item.transform * glm::dvec4(glm::dvec3(p), 1.0));
+      out.write(reinterpret_cast<const char*>(&w), sizeof(w));
+    }
+  }
+  int32_t next = 0;
+  for (const DrawItem& item : items) {
+    const Mesh& mesh = scene.nodes[item.node].mesh;
+    for (size_t t = 0; t < mesh.size(); ++t, next += 3) {
+      PlyFace f;
+      f.index[0] = next, f.index[1] = next + 1, f.index[2] = next + 2;
+      for (int k = 0; k < 3; ++k) f.rgb[k] = channel(mesh.colors[t], k);
+      out.write(reinterpret_cast<const char*>(&f), sizeof(f));
+    }
+  }
+  require(bool(out), path.string(), "write failed");
+}
+
+}  // namespace
+
+void addExportOptions(CLI::App& c, ExportArgs& a) {
+  c.add_option("scene", a.scene, "mesh file, scene.toml or builtin:NAME?key=value")->required();
+  c.add_option("out", a.out, "the PLY file to write")->required();
+  c.add_option("--max-triangles", a.maxTriangles, "refuse larger expanded scenes")
+      ->capture_default_str();
+  c.add_flag("--quiet,-q", a.quiet, "no progress lines");
+}
+
+int runExport(const ExportArgs& a, const mpi::Group& g) {
+  require(a.maxTriangles <= (uint64_t(1) << 31) / 3, "--max-triangles",
+          "must be at most " + std::to_string((uint64_t(1) << 31) / 3) + " (PLY indices are int)");
+  const Scene scene = loadScene(a.scene, a.quiet || !g.root());
+  require(scene.expandedTriangles() <= a.maxTriangles, a.scene,
+          std::to_string(scene.expandedTriangles()) + " triangles expanded, more than --max-triangles " +
+              std::to_string(a.maxTriangles));
+  if (!g.root()) return 0;
+  writeAtomically(a.out, [&](const std::filesystem::path& tmp) { writePly(scene, tmp); });
+  if (!a.quiet)
+    std::printf("lzb: %llu triangles written to %s\n",
+                (unsigned long long)scene.expandedTriangles(), a.out.c_str());
+  return 0;
+}
+
+}  // namespace lzb
