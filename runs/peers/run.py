@@ -8,6 +8,10 @@ witness (src/image/README.md), its correct rate over covered pixels and PSNR. Th
 raycast for every method but raycast itself (judged against zbuffer). The z-buffer, far slower
 on the largest scenes, renders fewer frames there (the `frames` column says how many).
 
+ParaView's pvbatch joins as a peer where it is installed (apt-get install paraview xvfb): the
+scene exported by `lzb export` (up to 5*10^7 triangles) rendered along the same cameras on 1 and
+2 ranks (IceT), frame time only. Install: apt-get install paraview python3-paraview xvfb.
+
 Usage: python3 runs/peers/run.py [--quick] [--plot-only] [--scenes=a,b] [--methods=a,b]
        (from the repository root, after scripts/build.sh and scripts/fetch-test-meshes.sh;
        plots need gnuplot: bash scripts/install-deps.sh --bench)
@@ -15,8 +19,10 @@ Writes runs/peers/peers.csv, limits.csv and peers.png.
 """
 import json
 import os
+import shutil
 import subprocess
 import sys
+import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402
@@ -36,6 +42,8 @@ SCENES = {
 }
 METHODS = [("raycast", []), ("hybrid", []), ("lzb", []), ("rzb", []),
            ("rzb_d2", ["--splat", "2"]), ("zbuffer", [])]
+# Plotted after the methods when ParaView is installed (frame time only: pvbatch gives no IDs).
+PEERS = ["pvbatch_1rank", "pvbatch_2ranks"]
 # lzb and the hybrid cull per leaf and refuse 10^12-triangle instancing; no z-buffer draws it.
 CANNOT = {("chessboard", "lzb"), ("chessboard", "hybrid"), ("chessboard", "zbuffer")}
 
@@ -51,6 +59,32 @@ def limits():
     out = subprocess.run([common.LZB, "limits", "--seconds", "1"], check=True,
                          capture_output=True, env=common.ENV).stdout
     return json.loads(out)
+
+
+def pvbatch(scene, report, w, h, commands):
+    """ParaView's pvbatch (llvmpipe, IceT across ranks) along the same cameras, where installed:
+    rows of its median frame time on 1 and 2 ranks (the scene exported by `lzb export`)."""
+    if shutil.which("pvbatch") is None or shutil.which("xvfb-run") is None:
+        return []
+    if report["scene"]["triangles_expanded"] > 50_000_000:
+        return []
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        mesh, cams = os.path.join(tmp, "scene.ply"), os.path.join(tmp, "report.json")
+        subprocess.run([common.LZB, "export", scene, mesh, "--quiet"], check=True, env=common.ENV)
+        with open(cams, "w") as f:
+            json.dump(report, f)
+        for ranks in (1, 2):
+            common.wait_quiet()
+            cmd = ["xvfb-run", "-a", "mpirun", "-n", str(ranks), "--oversubscribe", "pvbatch",
+                   os.path.join(HERE, "pvbatch_render.py"), mesh, cams, str(w), str(h)]
+            out = subprocess.run(cmd, check=True, capture_output=True, env=common.ENV).stdout.decode()
+            times = json.loads(out.strip().splitlines()[-1])["frame_seconds"]
+            commands.append(" ".join(cmd).replace(tmp, "TMP").replace(common.ROOT + "/", ""))
+            # The first frame reads (and with 2 ranks redistributes) the mesh.
+            rows.append({"method": f"pvbatch_{ranks}rank" + ("s" if ranks > 1 else ""),
+                         "frames": len(times), "median_frame_s": common.median(times[1:] or times)})
+    return rows
 
 
 def run():
@@ -97,6 +131,10 @@ def run():
                 if splat > 0:
                     row["samples_per_s"] = counts("samples_drawn") / splat
             rows.append(row)
+            if method == "raycast" and "pvbatch" in option("methods", ["pvbatch"]):
+                for pv in pvbatch(scene, rep, w, h, commands):
+                    rows.append({"scene": name, "triangles": row["triangles"], "width": w, "height": h, **pv})
+                    print(f"{name} {pv['method']}: {pv['median_frame_s'] * 1e3:9.1f} ms", flush=True)
             print(f"{name} {label:8s}: {row['median_frame_s'] * 1e3:9.1f} ms, correct (covered, min) "
                   f"{row['correct_rate_covered']}, psnr_aa {row['psnr_aa']}", flush=True)
     measured.append(dict(limits(), when="end"))
@@ -113,7 +151,7 @@ def run():
 def plot():
     rows = common.read_csv(os.path.join(HERE, "peers.csv"))
     scenes = [s for s in SCENES if any(r["scene"] == s for r in rows)]
-    methods = [m for m, _ in METHODS if any(r["method"] == m for r in rows)]
+    methods = [m for m in [m for m, _ in METHODS] + PEERS if any(r["method"] == m for r in rows)]
     def value(s, m, key, scale=1.0):
         for r in rows:
             if r["scene"] == s and r["method"] == m and r[key] not in ("", None):

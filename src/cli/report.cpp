@@ -81,6 +81,7 @@ void Report::addFrame(int frame, const Camera& camera, nlohmann::json entry, con
   entry["triangles"] = {{"unique", json_["scene"]["triangles_unique"]},
                         {"expanded", json_["scene"]["triangles_expanded"]}};
   entry["camera"] = {{"position", vec(camera.position())},
+                     {"up", vec(camera.spec().up)},
                      {"look_at", vec(camera.spec().lookAt)},
                      {"fov", camera.fovyDegrees()},
                      {"near", camera.nearPlane()},
