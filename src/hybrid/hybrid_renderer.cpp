@@ -108,7 +108,7 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
   lzb_.renderPvl(f, fb);
   stats.addStage("pvl_render", clock.lap());
   countPixels(f, fb, stats);
-  compositeNearer(fb, points_);
+  if (pointsDrawn_) compositeNearer(fb, points_);
   lzb_.combine(f, fb);
   stats.addStage("combine", clock.lap());
   lzb_.countFrame(f, stats);
@@ -124,12 +124,16 @@ void HybridRenderer::drawPoints(LzbRenderer::Frame& f, const PointParams& pp, in
   double total = 0.0;
   for (size_t i = 0; i < leaves.size(); ++i) total += costs[i] = double(leaves[i].samples);
   const std::vector<uint32_t> mine = dealByCost(costs, f.share);
-  keys_.reset(camera.width(), camera.height(), scene_.expandedTriangles() > 0xffffffffull,
-              options_.threads);
-  const PointCounts pc = splatLeaves(lzb_.accel(), areas_, lzb_.culled(), leaves, mine, camera, pp,
-                                     stream, keys_, options_.threads);
-  points_.resize(camera.width(), camera.height());
-  keys_.resolve(points_, options_.threads);
+  PointCounts pc;
+  pointsDrawn_ = !mine.empty();
+  if (pointsDrawn_) {  // no key buffer to clear, resolve and composite for a rank without samples
+    keys_.reset(camera.width(), camera.height(), scene_.expandedTriangles() > 0xffffffffull,
+                options_.threads);
+    pc = splatLeaves(lzb_.accel(), areas_, lzb_.culled(), leaves, mine, camera, pp, stream, keys_,
+                     options_.threads);
+    points_.resize(camera.width(), camera.height());
+    keys_.resolve(points_, options_.threads);
+  }
   stats.setShared("sampled_leaves", double(leaves.size()));
   stats.setShared("samples_expected", total);
   stats.setShared("fallback_px", pp.thresholdPx);
@@ -153,7 +157,8 @@ void HybridRenderer::countPixels(const LzbRenderer::Frame& f, const Framebuffer&
       const int tile = (y / side) * columns + x / side;
       const size_t i = fb.index(x, y);
       if (tile % f.share.size != f.share.rank || !open[i]) continue;
-      if (points_.covered(i) && nearer(points_.depth[i], points_.id[i], fb.depth[i], fb.id[i]))
+      if (pointsDrawn_ && points_.covered(i) &&
+          nearer(points_.depth[i], points_.id[i], fb.depth[i], fb.id[i]))
         ++samplePixels;
       else if (fb.covered(i))
         ++pvlPixels;

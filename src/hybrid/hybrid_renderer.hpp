@@ -64,6 +64,7 @@ class HybridRenderer : public Renderer {
   LeafAreas areas_;
   KeyBuffer keys_;
   Framebuffer points_;  // this rank's samples (depth and ID)
+  bool pointsDrawn_ = false;  // this frame had samples for this rank (else points_ is stale)
   std::unique_ptr<SampledLeafRule> rule_;
 };
 
