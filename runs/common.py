@@ -18,6 +18,8 @@ DATA = os.path.join(ROOT, "build", "data")
 ENV = dict(os.environ, OMP_WAIT_POLICY="passive", OMPI_ALLOW_RUN_AS_ROOT="1",
            OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 CORES = os.cpu_count() or 1
+# How several ranks are started: on a cluster, e.g. LZB_MPIRUN="mpirun --hostfile hosts".
+MPIRUN = os.environ.get("LZB_MPIRUN", "mpirun --oversubscribe").split()
 
 
 def idle_fraction(seconds=2.0):
@@ -54,7 +56,7 @@ def render(scene, args, ranks=1, threads=1, quiet_wait=True):
     try:
         cmd = [LZB, "render", scene, *args, "--threads", str(threads), "--quiet", "--out", out]
         if ranks > 1:
-            cmd = ["mpirun", "-n", str(ranks), "--oversubscribe", "--bind-to", "none", *cmd]
+            cmd = [*MPIRUN, "-n", str(ranks), *cmd]
         subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, env=ENV)
         with open(os.path.join(out, "report.json")) as f:
             rep = json.load(f)

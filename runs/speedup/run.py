@@ -8,6 +8,7 @@ stages), composite, shade (at the root), and imbalance (the slowest rank's rende
 mean over ranks).
 
 Usage: python3 runs/speedup/run.py [--quick] [--plot-only] [--methods=a,b] [--scenes=a,b]
+                                   [--configs=1x1,2x1,...]   (ranks x threads; the first is the base)
        (from the repository root, after scripts/build.sh and scripts/fetch-test-meshes.sh;
        plots need gnuplot). The same command on a cluster: see runs/speedup/README.md.
 Writes runs/speedup/speedup.csv, stages.csv, speedup.png and stages.png.
@@ -59,6 +60,7 @@ def breakdown(frames):
 def run():
     methods = option("methods", METHODS)
     scenes = option("scenes", list(SCENES))
+    configs = [tuple(int(v) for v in c.split("x")) for c in option("configs", [])] or CONFIGS
     rows, stage_rows, commands = [], [], []
     for scene in scenes:
         for (w, h) in SIZES:
@@ -67,7 +69,7 @@ def run():
                     print(f"{scene} {method}: skipped (cannot render this scene)", flush=True)
                     continue
                 base = None
-                for ranks, threads in CONFIGS:
+                for ranks, threads in configs:
                     shown, rep = common.render(
                         SCENES[scene], ["--method", method, "--frames", str(FRAMES), "--width",
                                         str(w), "--height", str(h)], ranks=ranks, threads=threads)
