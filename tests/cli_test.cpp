@@ -371,6 +371,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"reference_too_tall_in_file", "render DIR/tall.toml --reference raycast", "--reference"},
         BadCase{"subsamples_inexact", "render builtin:sphereflake --method rzb --subsamples",
                 "--subsamples"},
+        BadCase{"fallback_render_unknown",
+                "render builtin:sphereflake --method rzb --fallback-render opengl",
+                "--fallback-render"},
         BadCase{"subsamples_too_tall", "render builtin:sphereflake --subsamples --height 4100",
                 "--subsamples"}),
     [](const auto& info) { return info.param.name; });

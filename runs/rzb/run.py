@@ -19,6 +19,11 @@ STUDY: sensitivity vs_zbuffer throughput table1 walkthrough eps dynamic (default
   eps          box selection / reconstruction time against eps, and --eps auto (Fig. 7). -> eps.csv/.png
   dynamic      insert a 5,558-triangle object into a 1.26 M triangle city one triangle at a time and
                remove it, against rebuilding (section 8.4).                             -> dynamic.csv
+  fallback     the z-buffer fallback drawn by the native z-buffer against OSMesa (--fallback-render native |
+               gl), 40-frame circles with --cache-mb 512 on the forest and the city, the two alternated
+               run by run: median frame and fallback-stage seconds.                     -> fallback.csv
+  forest_walk  builtin:forest, 40-frame circle, --cache-mb 512, d = 1 and 2: rzb against raycast, the two
+               alternated run by run, with accuracy against --reference raycast.       -> forest_walk.csv
 The machine these ran on has 2 cores shared with other work: compare figures from the same run.
 Environment: LZB_BUILD=build folder (default build/); RZB_LOCK=/tmp/bench.lock runs every timed command
 under flock, one measurement at a time.
@@ -318,6 +323,98 @@ def dynamic():
                                         "insert_remove_s", "us_per_triangle", "compact_s", "area_error",
                                         "dirty_samples_per_s", "static_samples_per_s"],
                   "library level (SampleTree), one thread; object: CGAL elephant.off")
+
+
+# ---------------------------------------------------------------------------------------------
+def median_stage(frames, stage):
+    return statistics.median(f["stages"].get(stage, 0.0) for f in frames)
+
+
+def fallback():
+    """Native z-buffer against OSMesa for the fallback: whole cached frames, runs alternated."""
+    scenes = ["builtin:forest", "builtin:city"]
+    reps = 1 if quick else 3
+    frames = 10 if quick else 40
+    if not plot_only:
+        rows = []
+        for s in scenes:
+            for rep in range(reps):
+                for render_kind in ("native", "gl"):
+                    r = render(s, ["--method", "rzb", "--cache-mb", "512", "--fallback-render", render_kind],
+                               frames=frames)
+                    fr = r["frames"]
+                    row = {"scene": s, "fallback_render": render_kind, "run": rep, "frames": len(fr),
+                           "median_frame_s": statistics.median(f["seconds"] for f in fr),
+                           "median_fallback_s": median_stage(fr, "fallback"),
+                           "median_splat_s": median_stage(fr, "splat"),
+                           "median_cache_build_s": median_stage(fr, "cache_build"),
+                           "fallback_triangles": statistics.median(f["counts"]["fallback_triangles"] for f in fr)}
+                    row["fallback_share"] = row["median_fallback_s"] / row["median_frame_s"]
+                    rows.append(row)
+                    print(f"{s} {render_kind:6s} run {rep}: frame {row['median_frame_s']:.4f} s, fallback "
+                          f"{row['median_fallback_s']:.4f} s ({100 * row['fallback_share']:.0f} %)", flush=True)
+        write_csv("fallback.csv", rows, ["scene", "fallback_render", "run", "frames", "median_frame_s",
+                                         "median_fallback_s", "fallback_share", "median_splat_s",
+                                         "median_cache_build_s", "fallback_triangles"],
+                  f"--cache-mb 512, {frames} frames; native and gl alternated run by run; medians over each run's frames")
+    rows = read_csv("fallback.csv")
+    for s in dict.fromkeys(r["scene"] for r in rows):
+        for k in ("native", "gl"):
+            sel = [r for r in rows if r["scene"] == s and r["fallback_render"] == k]
+            print(f"{s} {k}: median over runs: frame {statistics.median(float(r['median_frame_s']) for r in sel):.4f} s, "
+                  f"fallback {statistics.median(float(r['median_fallback_s']) for r in sel):.4f} s")
+
+
+def forest_walk():
+    """rzb (cache) against raycast on the forest circle, alternated in one run; accuracy of each d from a
+    run with --reference raycast (the image does not depend on it; its frames are timed too)."""
+    scene = "builtin:forest"
+    reps = 1 if quick else 3
+    frames = 10 if quick else 40
+
+    def run(method, d, rep, reference):
+        args = ["--method", method]
+        if method == "rzb":
+            args += ["--cache-mb", "512", "--splat", str(d)]
+        if reference:
+            args += ["--reference", "raycast"]
+        fr = render(scene, args, frames=frames)["frames"]
+        row = {"method": method, "d": d if method == "rzb" else "", "run": rep, "reference": reference,
+               "frames": len(fr), "median_frame_s": statistics.median(f["seconds"] for f in fr)}
+        if reference:
+            acc = [f["accuracy"] for f in fr]
+            row["correct_rate_covered"] = statistics.median(a["correct_rate_covered"] for a in acc)
+            row["min_correct_rate_covered"] = min(a["correct_rate_covered"] for a in acc)
+            row["psnr_aa"] = statistics.median(a["psnr_aa"] for a in acc)
+        if method == "rzb":
+            for st in ("select", "fallback", "cache_build", "splat", "resolve", "shade"):
+                row[st + "_s"] = median_stage(fr, st)
+            row["samples"] = statistics.median(f["counts"]["samples_drawn"] for f in fr)
+            row["fallback_triangles"] = statistics.median(f["counts"]["fallback_triangles"] for f in fr)
+        print(f"run {rep} {method} d={row['d']} reference={reference}: {row['median_frame_s']:.4f} s "
+              f"{row.get('correct_rate_covered', '')}", flush=True)
+        return row
+
+    if not plot_only:
+        rows = []
+        for rep in range(reps):
+            for d in (1, 2):
+                rows.append(run("rzb", d, rep, False))
+                rows.append(run("raycast", d, rep, False))
+        for d in (1, 2):
+            rows.append(run("rzb", d, 0, True))
+        write_csv("forest_walk.csv", rows, ["method", "d", "run", "reference", "frames", "median_frame_s",
+                                            "correct_rate_covered", "min_correct_rate_covered", "psnr_aa",
+                                            "select_s", "fallback_s", "cache_build_s", "splat_s", "resolve_s",
+                                            "shade_s", "samples", "fallback_triangles"],
+                  f"builtin:forest, {frames}-frame circle; rzb --cache-mb 512; rzb and raycast alternated run by "
+                  "run; accuracy (median over frames) from the runs with --reference raycast")
+    rows = read_csv("forest_walk.csv")
+    ray = statistics.median(float(r["median_frame_s"]) for r in rows if r["method"] == "raycast")
+    for d in ("1", "2"):
+        rz = statistics.median(float(r["median_frame_s"]) for r in rows
+                               if r["method"] == "rzb" and r["d"] == d and r["reference"] == "False")
+        print(f"forest d={d}: rzb {rz:.4f} s, raycast {ray:.4f} s: rzb / raycast = {rz / ray:.2f}")
 
 
 for s in studies:

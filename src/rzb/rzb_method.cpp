@@ -11,7 +11,8 @@ namespace rzb {
 
 RzbParams parseRzbOptions(const std::string& eps, double oversample, int splat,
                           const std::string& fallback, const std::string& reconstruct,
-                          double areaRatio, double cacheMb, const std::string& backfaces) {
+                          double areaRatio, double cacheMb, const std::string& backfaces,
+                          const std::string& fallbackRender) {
   RzbParams p;
   if (eps == "auto") {
     p.autoEps = true;
@@ -26,6 +27,9 @@ RzbParams parseRzbOptions(const std::string& eps, double oversample, int splat,
     p.fallbackPx = parseNumber(fallback, "--fallback", "'auto', 'off' or a pixel area > 0");
     require(p.fallbackPx > 0.0, "--fallback", "must be > 0 pixels, got '" + fallback + "'");
   }
+  require(fallbackRender == "native" || fallbackRender == "gl", "--fallback-render",
+          "expected native or gl, got '" + fallbackRender + "'");
+  p.fallbackRender = fallbackRender == "native" ? FallbackRender::kNative : FallbackRender::kGl;
   if (reconstruct == "auto") {
     p.reconstruct = splat > 1 ? Reconstruct::kSplat : Reconstruct::kPixel;
   } else if (reconstruct == "pixel") {
@@ -69,6 +73,10 @@ class RzbMethod : public Method {
                     "rzb, hybrid: boxes (hybrid: octree leaves) whose triangles project above this "
                     "many pixels are drawn exactly (rzb: z-buffer; hybrid: lazy ray casting + "
                     "PVL): auto (d^2 / ln pixels), off (rzb only), or a number");
+    app.add_option("--fallback-render", fallbackRender_,
+                   "rzb: how the fallback's triangles are z-buffered: native (multithreaded) | gl "
+                   "(OSMesa)")
+        ->capture_default_str();
     app.add_option("--reconstruct", reconstruct_,
                    "rzb: pixel | splat | gauss (Gaussian average of visible samples, 10x samples) "
                    "| auto (pixel for d = 1, else splat)")
@@ -80,7 +88,7 @@ class RzbMethod : public Method {
   }
   void validate() override {
     params_ = rzb::parseRzbOptions(eps_, oversample_, splat_, fallback_, reconstruct_, areaRatio_,
-                                   cacheMb_, backfaces_);
+                                   cacheMb_, backfaces_, fallbackRender_);
   }
   nlohmann::json parameters() const override { return params_.toJson(); }
   std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const override {
@@ -88,7 +96,8 @@ class RzbMethod : public Method {
   }
 
  private:
-  std::string eps_ = "1.5", fallback_ = "auto", reconstruct_ = "auto", backfaces_ = "drop";
+  std::string eps_ = "1.5", fallback_ = "auto", reconstruct_ = "auto", backfaces_ = "drop",
+              fallbackRender_ = "native";
   double oversample_ = 1.0, areaRatio_ = 4.0, cacheMb_ = 0.0;
   int splat_ = 1;
   rzb::RzbParams params_;

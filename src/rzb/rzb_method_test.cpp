@@ -24,6 +24,9 @@ TEST(RzbOptions, DefaultsParse) {
   EXPECT_EQ(p.eps, 1.5);
   EXPECT_EQ(p.reconstruct, Reconstruct::kPixel);
   EXPECT_TRUE(p.fallback);
+  EXPECT_EQ(p.fallbackRender, FallbackRender::kNative);
+  EXPECT_EQ(parseRzbOptions("1.5", 1.0, 1, "auto", "auto", 4.0, 0.0, "drop", "gl").fallbackRender,
+            FallbackRender::kGl);
   EXPECT_TRUE(parseRzbOptions("auto", 1.0, 3, "off", "auto", 8.0, 64.0, "keep").autoEps);
   EXPECT_EQ(parseRzbOptions("2", 1.0, 3, "off", "auto", 8.0, 0.0, "keep").reconstruct,
             Reconstruct::kSplat);
@@ -46,6 +49,12 @@ TEST(RzbOptions, OutOfRangeValuesNameTheOption) {
   EXPECT_NE(errorOf("1.5", 1, 1, "auto", "auto", 4, -1).find("--cache-mb"), std::string::npos);
   EXPECT_NE(errorOf("1.5", 1, 1, "auto", "auto", 4, 0, "maybe").find("--backfaces"),
             std::string::npos);
+  try {
+    parseRzbOptions("1.5", 1.0, 1, "auto", "auto", 4.0, 0.0, "drop", "opengl");
+    ADD_FAILURE() << "--fallback-render opengl accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--fallback-render"), std::string::npos);
+  }
 }
 
 TEST(RzbOptions, MethodRegistersItsOptions) {
@@ -54,14 +63,16 @@ TEST(RzbOptions, MethodRegistersItsOptions) {
   EXPECT_FALSE(method->exact());
   CLI::App app;
   method->addOptions(app);
-  const char* argv[] = {"x", "--eps", "2.5", "--splat", "2", "--cache-mb", "32"};
-  app.parse(7, const_cast<char**>(argv));
+  const char* argv[] = {"x", "--eps", "2.5", "--splat", "2", "--cache-mb", "32",
+                        "--fallback-render", "gl"};
+  app.parse(9, const_cast<char**>(argv));
   method->validate();
   const nlohmann::json j = method->parameters();
   EXPECT_EQ(j["eps"].get<double>(), 2.5);
   EXPECT_EQ(j["splat"].get<int>(), 2);
   EXPECT_EQ(j["reconstruct"].get<std::string>(), "splat");
   EXPECT_EQ(j["cache_mb"].get<double>(), 32.0);
+  EXPECT_EQ(j["fallback_render"].get<std::string>(), "gl");
 }
 
 }  // namespace

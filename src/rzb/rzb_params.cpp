@@ -56,6 +56,10 @@ std::string reconstructName(Reconstruct r) {
   return "?";
 }
 
+std::string fallbackRenderName(FallbackRender r) {
+  return r == FallbackRender::kNative ? "native" : "gl";
+}
+
 nlohmann::json RzbParams::toJson() const {
   return {{"eps", autoEps ? nlohmann::json("auto") : nlohmann::json(eps)},
           {"oversample", oversample},
@@ -64,6 +68,7 @@ nlohmann::json RzbParams::toJson() const {
           {"fallback", !fallback ? nlohmann::json("off")
                                  : fallbackPx > 0.0 ? nlohmann::json(fallbackPx)
                                                     : nlohmann::json("auto")},
+          {"fallback_render", fallbackRenderName(fallbackRender)},
           {"area_ratio", areaRatio},
           {"cache_mb", cacheMb},
           {"backfaces", dropBackfaces ? "drop" : "keep"},

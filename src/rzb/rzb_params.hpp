@@ -8,6 +8,8 @@
 namespace lzb::rzb {
 
 enum class Reconstruct { kPixel, kSplat, kGauss };
+// Which exact z-buffer draws the fallback's triangles: the native one (multithreaded) or OSMesa.
+enum class FallbackRender { kNative, kGl };
 
 struct RzbParams {
   double eps = 1.5;            // depth accuracy: select a box when (zmax / zmin)^2 <= eps
@@ -17,6 +19,7 @@ struct RzbParams {
   Reconstruct reconstruct = Reconstruct::kPixel;
   bool fallback = true;        // z-buffer fallback for boxes of large triangles (section 7.1)
   double fallbackPx = 0.0;     // projected triangle area (pixels) above which; 0: d^2 / ln v
+  FallbackRender fallbackRender = FallbackRender::kNative;  // faster than OSMesa (README)
   double areaRatio = 4.0;      // area class width (2..64)
   double cacheMb = 0.0;        // sample cache budget (MiB); 0: no cache
   bool dropBackfaces = true;   // drop samples on triangles facing away from the eye
@@ -34,5 +37,6 @@ struct RzbParams {
 };
 
 std::string reconstructName(Reconstruct r);
+std::string fallbackRenderName(FallbackRender r);
 
 }  // namespace lzb::rzb

@@ -22,7 +22,10 @@ constexpr double kMaxBoxLayers = 16.0;
 }  // namespace
 
 RzbRenderer::RzbRenderer(const Scene& scene, const RenderOptions& options, const RzbParams& params)
-    : scene_(scene), options_(options), params_(params), fallback_(scene) {
+    : scene_(scene),
+      options_(options),
+      params_(params),
+      fallback_(scene, params.fallbackRender, std::max(options.threads, 1)) {
   params_.validate();
   options_.threads = std::max(options_.threads, 1);
   TreeParams tp;

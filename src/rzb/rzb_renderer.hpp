@@ -2,7 +2,7 @@
 // --method rzb: the randomized z-buffer (Wand et al. 2001) with the z-buffer fallback for large
 // triangles and the sample cache. Per frame:
 //   select boxes (eps, or --eps auto) -> deal boxes to ranks by cost -> fallback boxes through
-//   OSMesa -> sample boxes splatted (drawn fresh, or from the cache) -> keys resolved to depth and
+//   the native z-buffer (or OSMesa: --fallback-render gl) -> sample boxes splatted (drawn fresh, or from the cache) -> keys resolved to depth and
 //   ID -> composited with the fallback by (depth, id); colour comes from the IDs after compositing
 //   (pixel, splat), or from the Gaussian average of visible samples (gauss, done here).
 // The same seed gives the same image for any thread count and any number of ranks.

@@ -29,35 +29,47 @@ const Scene& smallCity() {
   return scene;
 }
 
+// Both fallback z-buffers, the native one (default) and OSMesa.
+constexpr FallbackRender kRenders[] = {FallbackRender::kNative, FallbackRender::kGl};
+
 TEST(RzbRenderer, SameImageForOneAndTwoThreads) {
   const Scene& scene = smallCity();
   const Camera camera = sceneCamera(scene, 160, 120);
-  RzbRenderer one(scene, options(1), pointHeavy()), two(scene, options(2), pointHeavy());
-  FrameStats stats;
-  const Framebuffer a = renderWith(one, camera, 3, {}, &stats);
-  const Framebuffer b = renderWith(two, camera, 3);
-  EXPECT_GT(stats.counts["samples_splatted"].get<double>(), 1e4);
-  EXPECT_GT(stats.counts["fallback_triangles"].get<double>(), 0.0);
-  EXPECT_TRUE(sameImage(a, b));
-  // Another frame number draws other samples.
-  const Framebuffer c = renderWith(two, camera, 4);
-  EXPECT_FALSE(sameImage(a, c));
+  for (FallbackRender render : kRenders) {
+    RzbParams p = pointHeavy();
+    p.fallbackRender = render;
+    RzbRenderer one(scene, options(1), p), two(scene, options(2), p);
+    FrameStats stats;
+    const Framebuffer a = renderWith(one, camera, 3, {}, &stats);
+    const Framebuffer b = renderWith(two, camera, 3);
+    EXPECT_GT(stats.counts["samples_splatted"].get<double>(), 1e4);
+    EXPECT_GT(stats.counts["fallback_triangles"].get<double>(), 0.0);
+    EXPECT_TRUE(sameImage(a, b)) << fallbackRenderName(render);
+    // Another frame number draws other samples.
+    const Framebuffer c = renderWith(two, camera, 4);
+    EXPECT_FALSE(sameImage(a, c));
+  }
 }
 
 TEST(RzbRenderer, TwoRanksCompositeToTheOneRankImage) {
   const Scene& scene = smallCity();
   const Camera camera = sceneCamera(scene, 160, 120);
-  RzbRenderer r(scene, options(2), pointHeavy());
-  FrameStats s0, s1;
-  const Framebuffer whole = renderWith(r, camera, 1);
-  Framebuffer part0 = renderWith(r, camera, 1, {0, 2}, &s0);
-  const Framebuffer part1 = renderWith(r, camera, 1, {1, 2}, &s1);
-  // Both ranks did a real share of each kind of work.
-  EXPECT_GT(s0.counts["samples_drawn"].get<double>(), 0.0);
-  EXPECT_GT(s1.counts["samples_drawn"].get<double>(), 0.0);
-  EXPECT_GT(s0.counts["fallback_triangles"].get<double>() + s1.counts["fallback_triangles"].get<double>(), 0.0);
-  compositeNearer(part0, part1);
-  EXPECT_TRUE(sameImage(part0, whole));
+  for (FallbackRender render : kRenders) {
+    RzbParams p = pointHeavy();
+    p.fallbackRender = render;
+    RzbRenderer r(scene, options(2), p);
+    FrameStats s0, s1;
+    const Framebuffer whole = renderWith(r, camera, 1);
+    Framebuffer part0 = renderWith(r, camera, 1, {0, 2}, &s0);
+    const Framebuffer part1 = renderWith(r, camera, 1, {1, 2}, &s1);
+    // Both ranks did a real share of each kind of work.
+    EXPECT_GT(s0.counts["samples_drawn"].get<double>(), 0.0);
+    EXPECT_GT(s1.counts["samples_drawn"].get<double>(), 0.0);
+    EXPECT_GT(s0.counts["fallback_triangles"].get<double>(), 0.0);
+    EXPECT_GT(s1.counts["fallback_triangles"].get<double>(), 0.0);
+    compositeNearer(part0, part1);
+    EXPECT_TRUE(sameImage(part0, whole)) << fallbackRenderName(render);
+  }
 }
 
 TEST(RzbRenderer, TwoRanksWithWideKeysOnTenToTheTwelveTriangles) {
@@ -130,12 +142,27 @@ TEST(RzbRenderer, LargeTrianglesGoToTheZBufferAndMatchItExactly) {
   }
   scene.finalize();
   const Camera camera = makeCamera({0.5, 0.3, 8}, {0, 0, -3}, 0.5, 50.0, 160, 120);
-  RzbRenderer r(scene, options(2), RzbParams{});
+  // OSMesa's image for --fallback-render gl, the native z-buffer's for the default.
+  RzbParams gl;
+  gl.fallbackRender = FallbackRender::kGl;
+  RzbRenderer rg(scene, options(2), gl);
   FrameStats stats;
-  const Framebuffer fb = renderWith(r, camera, 0, {}, &stats);
+  const Framebuffer fg = renderWith(rg, camera, 0, {}, &stats);
   EXPECT_EQ(stats.counts["samples_drawn"].get<double>(), 0.0);
   EXPECT_EQ(stats.counts["fallback_triangles"].get<double>(), 8.0);
-  EXPECT_TRUE(sameImage(fb, renderZBuffer(scene, camera)));
+  EXPECT_TRUE(sameImage(fg, renderZBuffer(scene, camera)));
+  RzbRenderer rn(scene, options(2), RzbParams{});
+  FrameStats ns;
+  const Framebuffer fn = renderWith(rn, camera, 0, {}, &ns);
+  EXPECT_EQ(ns.counts["fallback_triangles"].get<double>(), 8.0);
+  Framebuffer native(camera.width(), camera.height());
+  DrawLists all;
+  all.lists.push_back({0, glm::dmat4(1.0), 0, {0, 1, 2, 3, 4, 5, 6, 7}});
+  all.triangles = 8;
+  NativeRasterizer().draw(scene, camera, all, {}, 1, native);
+  EXPECT_TRUE(sameImage(fn, native));
+  // The two z-buffers agree on every pixel's triangle here (no edge passes near a centre).
+  EXPECT_EQ(fn.id, fg.id);
   // With the fallback off the same scene is all points, and still right almost everywhere.
   RzbParams off;
   off.fallback = false;

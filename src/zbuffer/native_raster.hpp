@@ -1,6 +1,7 @@
 #pragma once
 // The native z-buffer: a multithreaded software z-buffer that any pass can use (lzb's near pass
-// and PVL, `--near-render native`, `--pvl-render native`). A pass draws draw lists either at
+// and PVL, `--near-render native`, `--pvl-render native`; rzb's fallback, `--fallback-render
+// native`). A pass draws draw lists either at
 // every pixel (optionally clipped per fragment at a far depth: lzb's near pass stops at the
 // partition plane) or only at the "open" pixels of a mask (lzb's PVL pass draws only the near
 // pass's unfinished pixels; every ray-cast pixel is one, and a PVL triangle can cover no other
