@@ -12,9 +12,6 @@ namespace {
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-// Saturating add: expanded counts of absurd nested scenes stay at UINT64_MAX instead of wrapping.
-uint64_t addSat(uint64_t a, uint64_t b) { return a > ~uint64_t(0) - b ? ~uint64_t(0) : a + b; }
-
 }  // namespace
 
 bool Mesh::add(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, Rgba8 color) {
@@ -46,29 +43,68 @@ void Scene::finalize() {
   expandedCount.assign(n, 0);
   nodeBounds.assign(n, Bounds{});
   instanceOffsets.assign(n, {});
+  std::vector<int> height(n, 0);  // instances on the longest path down from each node
   enum : uint8_t { kNew, kActive, kDone };
   std::vector<uint8_t> state(n, kNew);
-  // Post-order DFS: children are finished before their parents use them.
-  std::function<void(uint32_t)> visit = [&](uint32_t i) {
-    state[i] = kActive;
-    Node& node = nodes[i];
-    uint64_t count = node.mesh.size();
-    Bounds b;
-    for (const glm::vec3& p : node.mesh.positions) b.extend(glm::dvec3(p));
-    for (const Instance& inst : node.instances) {
-      instanceOffsets[i].push_back(count);
-      require(inst.node < n, source, "node '" + node.name + "' references a missing node");
-      require(state[inst.node] != kActive, source,
-              "instancing cycle through node '" + nodes[inst.node].name + "'");
-      if (state[inst.node] == kNew) visit(inst.node);
-      count = addSat(count, expandedCount[inst.node]);
-      b.extend(nodeBounds[inst.node].transformed(inst.transform));
-    }
-    expandedCount[i] = count;
-    nodeBounds[i] = b;
-    state[i] = kDone;
+  // Iterative post-order DFS (a recursive one overflows the stack on long chains): `path` holds
+  // the nodes from the root down, each with its next instance to follow.
+  struct OnPath {
+    uint32_t node;
+    size_t next;
   };
-  visit(root);
+  std::vector<OnPath> path{{root, 0}};
+  state[root] = kActive;
+  while (!path.empty()) {
+    const uint32_t i = path.back().node;
+    const Node& node = nodes[i];
+    if (path.back().next < node.instances.size()) {
+      const uint32_t child = node.instances[path.back().next++].node;
+      require(child < n, source, "node '" + node.name + "' references a missing node");
+      require(state[child] != kActive, source,
+              "instancing cycle through node '" + nodes[child].name + "'");
+      if (state[child] == kDone) continue;
+      require(path.size() <= size_t(kMaxInstanceDepth), source,
+              "instances nest deeper than " + std::to_string(kMaxInstanceDepth) +
+                  " levels: node '" + nodes[child].name + "' is at level " +
+                  std::to_string(path.size()) + " below the root");
+      state[child] = kActive;
+      path.push_back({child, 0});
+      continue;
+    }
+    finishNode(i, height);
+    state[i] = kDone;
+    path.pop_back();
+  }
+  instanceDepth = height[root];
+}
+
+// Derived data of node i from its own triangles and its finished children.
+void Scene::finishNode(uint32_t i, std::vector<int>& height) {
+  const Node& node = nodes[i];
+  const auto checkCount = [&](uint64_t count) {
+    if (count > kMaxExpandedTriangles)
+      throw InputError(source + ": too large: node '" + node.name +
+                       "' expands to more than 2^62 triangles");
+  };
+  uint64_t count = node.mesh.size();
+  checkCount(count);
+  Bounds b;
+  for (const glm::vec3& p : node.mesh.positions) b.extend(glm::dvec3(p));
+  int h = 0;
+  for (const Instance& inst : node.instances) {
+    instanceOffsets[i].push_back(count);
+    // Both terms are at most 2^62: the sum cannot wrap.
+    count += expandedCount[inst.node];
+    checkCount(count);
+    b.extend(nodeBounds[inst.node].transformed(inst.transform));
+    h = std::max(h, height[inst.node] + 1);
+  }
+  require(h <= kMaxInstanceDepth, source,
+          "instances nest deeper than " + std::to_string(kMaxInstanceDepth) + " levels below node '" +
+              node.name + "' (" + std::to_string(h) + ")");
+  expandedCount[i] = count;
+  nodeBounds[i] = b;
+  height[i] = h;
 }
 
 uint64_t Scene::uniqueTriangles() const {

@@ -25,6 +25,14 @@ namespace lzb {
 
 constexpr uint64_t kNoId = ~uint64_t(0);
 
+// Instances on any path from the root: at most this many. Every later walk over the graph (the
+// cull, the draw walk, the sample trees, the Embree levels, the rays' descent) recurses once per
+// level, so this bound is what keeps their stacks small; finalize() checks it once, iteratively.
+constexpr int kMaxInstanceDepth = 64;
+// Expanded triangles of any node: at most 2^62, so an ID offset plus a count never wraps and
+// kNoId stays free. finalize() refuses more.
+constexpr uint64_t kMaxExpandedTriangles = uint64_t(1) << 62;
+
 struct Mesh {
   std::vector<glm::vec3> positions;  // 3 per triangle, node frame
   std::vector<glm::vec3> normals;    // 1 per triangle: unit geometric normal, cross(v1-v0, v2-v0)
@@ -89,8 +97,10 @@ struct Scene {
   std::vector<uint64_t> expandedCount;  // per node: triangles with all instances expanded
   std::vector<Bounds> nodeBounds;       // per node, in its own frame
   std::vector<std::vector<uint64_t>> instanceOffsets;  // per node: childOffset of each instance
-  // Throws InputError on a cycle or a dangling node index; fills the derived data.
+  // Fills the derived data. Throws InputError naming `source` and the node on a cycle, a dangling
+  // node index, nesting deeper than kMaxInstanceDepth or more than kMaxExpandedTriangles.
   void finalize();
+  int instanceDepth = 0;  // instances on the longest path from the root (set by finalize)
 
   const Node& rootNode() const { return nodes[root]; }
   uint64_t uniqueTriangles() const;                 // stored once each
@@ -107,6 +117,9 @@ struct Scene {
     glm::dmat4 transform;
   };
   std::optional<TriangleRef> resolve(uint64_t id) const;
+
+ private:
+  void finishNode(uint32_t i, std::vector<int>& height);
 };
 
 // One mesh drawn with a world transform: the scene graph flattened to its leaves.

@@ -116,6 +116,96 @@ TEST(Scene, HugeNestedCountsDoNotOverflow) {
   EXPECT_DOUBLE_EQ(ref->transform[3][0], std::ldexp(1.0, 25) - 1.0);
 }
 
+// A chain of `levels` instance levels over one quad: node k instances node k + 1, the last holds
+// the quad; the root is node 0.
+Scene chain(int levels) {
+  Scene s;
+  for (int k = 0; k <= levels; ++k) s.addNode("n" + std::to_string(k));
+  for (int k = 0; k < levels; ++k)
+    s.nodes[size_t(k)].instances.push_back({uint32_t(k + 1), glm::dmat4(1.0)});
+  s.nodes[size_t(levels)].mesh = quad(1);
+  return s;
+}
+
+// The message of the InputError f throws ("" and a failure when it throws none).
+template <class F>
+std::string errorOf(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected an InputError";
+  return "";
+}
+
+TEST(Scene, InstanceDepthIsBoundedAt64Levels) {
+  Scene ok = chain(kMaxInstanceDepth);
+  ok.finalize();
+  EXPECT_EQ(ok.instanceDepth, kMaxInstanceDepth);
+  EXPECT_EQ(ok.expandedTriangles(), 2u);
+  Scene deep = chain(kMaxInstanceDepth + 1);
+  const std::string e = errorOf([&] { deep.finalize(); });
+  EXPECT_NE(e.find("deeper than 64 levels"), std::string::npos) << e;
+  EXPECT_NE(e.find("'n65'"), std::string::npos) << e;  // the first node too deep
+}
+
+TEST(Scene, AChainOf100000NodesIsRefusedWithoutOverflowingTheStack) {
+  Scene s = chain(100000);
+  const std::string e = errorOf([&] { s.finalize(); });
+  EXPECT_NE(e.find("deeper than 64 levels"), std::string::npos) << e;
+}
+
+TEST(Scene, DepthCountsTheLongestPathNotTheFirstOneFound) {
+  // The root reaches the 60-level chain's middle (n30) directly first, then through the chain:
+  // the walk meets n30 finished, and the height it carries puts the chain's top at level 64+.
+  Scene s = chain(70);
+  const uint32_t root = s.addNode("root");
+  s.nodes[root].instances.push_back({30, glm::dmat4(1.0)});
+  s.nodes[root].instances.push_back({0, glm::dmat4(1.0)});
+  s.root = root;
+  const std::string e = errorOf([&] { s.finalize(); });
+  EXPECT_NE(e.find("deeper than 64 levels"), std::string::npos) << e;
+}
+
+TEST(Scene, ANodeInstancingItselfIsACycle) {
+  Scene s;
+  const uint32_t a = s.addNode("self");
+  s.nodes[a].mesh = quad(1);
+  s.nodes[a].instances.push_back({a, glm::dmat4(1.0)});
+  const std::string e = errorOf([&] { s.finalize(); });
+  EXPECT_NE(e.find("cycle through node 'self'"), std::string::npos) << e;
+}
+
+TEST(Scene, ExpandedCountsBeyond2To62AreRefusedNamingTheNode) {
+  // 10 instances per level, 30 levels, over 2 triangles: 2e30 expanded (it used to saturate).
+  Scene s;
+  uint32_t child = s.addNode("leaf");
+  s.nodes[child].mesh = quad(1);
+  for (int level = 0; level < 30; ++level) {
+    const uint32_t parent = s.addNode("level" + std::to_string(level));
+    for (int i = 0; i < 10; ++i) s.nodes[parent].instances.push_back({child, glm::dmat4(1.0)});
+    child = parent;
+  }
+  s.root = child;
+  const std::string e = errorOf([&] { s.finalize(); });
+  EXPECT_NE(e.find("more than 2^62 triangles"), std::string::npos) << e;
+  // 2 * 10^18 (level17) is the last that fits; level18 (2e19) is the first refused.
+  EXPECT_NE(e.find("'level18'"), std::string::npos) << e;
+  // Exactly 2^62 fits.
+  Scene edge;
+  uint32_t c = edge.addNode("leaf");
+  edge.nodes[c].mesh = quad(1);  // 2 = 2^1
+  for (int level = 0; level < 61; ++level) {
+    const uint32_t p = edge.addNode("x" + std::to_string(level));
+    edge.nodes[p].instances = {{c, glm::dmat4(1.0)}, {c, glm::dmat4(1.0)}};
+    c = p;
+  }
+  edge.root = c;
+  edge.finalize();
+  EXPECT_EQ(edge.expandedTriangles(), kMaxExpandedTriangles);
+}
+
 TEST(Framebuffer, CompositeIsOrderIndependent) {
   Framebuffer a(4, 1), b(4, 1), c(4, 1);
   a.keepNearer(0, 1.0f, 10, 5);

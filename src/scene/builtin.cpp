@@ -7,7 +7,7 @@ namespace lzb {
 
 void requireIdSpace(const BuiltinParams& params, const std::string& key, uint64_t base,
                     uint64_t factor, int64_t levels) {
-  constexpr uint64_t kLimit = uint64_t(1) << 62;
+  constexpr uint64_t kLimit = kMaxExpandedTriangles;
   uint64_t total = base;
   for (int64_t i = 0; i < levels; ++i) {
     require(factor == 0 || total <= kLimit / factor, params.where(key),

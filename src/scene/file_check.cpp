@@ -108,6 +108,9 @@ void checkPly(const std::filesystem::path& path, const std::string& data) {
         p.countSize = plyTypeSize(countType);
         p.size = plyTypeSize(itemType);
         require(p.countSize > 0 && p.size > 0, where, "unknown PLY list type in '" + line + "'");
+        // A count is an integer (at most 4 bytes here); a float one would be read two ways.
+        require(countType.find("float") == std::string::npos && countType != "double", where,
+                "PLY list count type must be an integer type in '" + line + "'");
       } else {
         p.size = plyTypeSize(type);
         require(p.size > 0, where, "unknown PLY property type in '" + line + "'");
@@ -170,7 +173,10 @@ void checkPly(const std::filesystem::path& path, const std::string& data) {
         need(uint64_t(p.countSize));
         const uint64_t items = readUnsigned(bytes + at, p.countSize, big);
         at += uint64_t(p.countSize);
-        need(items * uint64_t(p.size));
+        // Divided, not multiplied: an 8-byte count near 2^64 must not wrap.
+        require(items <= (end - at) / uint64_t(p.size), where,
+                "truncated: PLY binary data ends inside element '" + e.name + "' " +
+                    std::to_string(i) + " of " + std::to_string(e.count));
         at += items * uint64_t(p.size);
       }
   }
@@ -219,8 +225,18 @@ void checkOff(const std::filesystem::path& path, const std::string& data) {
                 " faces, the file has " + std::to_string(f));
     uint64_t k = 0;
     const auto r = std::from_chars(words[0].data(), words[0].data() + words[0].size(), k);
-    require(r.ec == std::errc() && words.size() >= k + 1, where,
+    // k < size, not size >= k + 1: a face size near 2^64 must not wrap.
+    require(r.ec == std::errc() && k < words.size(), where,
             "malformed OFF face " + std::to_string(f) + ": '" + line + "'");
+    // assimp clamps an index past the vertices to the last vertex, silently.
+    for (uint64_t i = 1; i <= k; ++i) {
+      uint64_t index = 0;
+      const std::string& w = words[size_t(i)];
+      const auto ri = std::from_chars(w.data(), w.data() + w.size(), index);
+      require(ri.ec == std::errc() && ri.ptr == w.data() + w.size() && index < counts[0], where,
+              "malformed OFF face " + std::to_string(f) + ": vertex index '" + w + "' is not one of the " +
+                  std::to_string(counts[0]) + " vertices");
+    }
   }
 }
 

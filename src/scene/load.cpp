@@ -39,10 +39,6 @@ Scene loadScene(const std::string& spec, bool quiet) {
     scene.root = addMeshFile(scene, spec);
     scene.finalize();
   }
-  // Expanded IDs must fit in 64 bits (finalize saturates instead of wrapping).
-  for (size_t i = 0; i < scene.nodes.size(); ++i)
-    require(scene.expandedCount[i] != ~uint64_t(0), spec,
-            "too large: node '" + scene.nodes[i].name + "' expands to more than 2^64 triangles");
   require(scene.expandedTriangles() > 0, spec, "the scene has no triangles");
   const LoadStats& s = scene.stats;
   if (!quiet && (s.degenerate > 0 || s.nonFinite > 0))

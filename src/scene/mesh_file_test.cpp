@@ -159,6 +159,40 @@ TEST(MeshFile, TruncatedFiles) {
   expectError(dir.write("cut_bin.ply", bin.substr(0, bin.size() - 4)), "truncated");
 }
 
+TEST(MeshFile, CountsNear2To64InHeadersDoNotWrapThePreChecks) {
+  ScratchDir dir;
+  // An OFF face of 2^64 - 1 vertices: "size >= k + 1" wrapped to "size >= 0" and passed.
+  expectError(dir.write("face.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n18446744073709551615 0 1 2\n"),
+              "malformed OFF face 0");
+  // A binary PLY list counted by an 8-byte double: 2^62 items times 4 bytes wrapped to 0 and
+  // passed, while assimp reads the same bytes as the double 2.0.
+  std::string ply =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list double int vertex_indices\nend_header\n";
+  const float v[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  ply.append(reinterpret_cast<const char*>(v), sizeof v);
+  ply.append(7, '\0');
+  ply.push_back('\x40');
+  expectError(dir.write("list.ply", ply), "count type must be an integer");
+  // The largest integer count, 2^32 - 1 items of 8 bytes, in a short file.
+  std::string big =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nelement face 1\nproperty list uint double vertex_indices\nend_header\n";
+  big.append(reinterpret_cast<const char*>(v), sizeof v);
+  big.append(4, '\xff');
+  big.append(24, '\0');
+  expectError(dir.write("big.ply", big), "truncated");
+}
+
+TEST(MeshFile, OffIndicesPastTheVerticesAreRefused) {
+  ScratchDir dir;
+  // assimp would clamp index 7 to the last vertex and load a triangle the file does not hold.
+  expectError(dir.write("far.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"),
+              "vertex index '7' is not one of the 3 vertices");
+  expectError(dir.write("neg.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n"),
+              "vertex index '-1'");
+}
+
 TEST(MeshFile, NanAndDegenerateTrianglesAreDroppedAndCounted) {
   ScratchDir dir;
   const Scene s = load(dir.write("bad.obj",

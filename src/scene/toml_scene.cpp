@@ -340,37 +340,56 @@ void TomlSceneReader::readNodes(const toml::array& a) {
   checkCycles(a);
 }
 
+// "a -> b -> a": the names on `path` from `target` on, back to `target`.
+template <class Path>
+std::string cycleText(const toml::array& nodes, const Path& path, size_t target) {
+  const auto name = [&](size_t i) { return (*nodes[i].as_table())["name"].value<std::string>().value(); };
+  std::string text;
+  bool on = false;
+  for (const auto& p : path) {
+    on = on || p.node == target;
+    if (on) text += name(p.node) + " -> ";
+  }
+  return text + name(target);
+}
+
 void TomlSceneReader::checkCycles(const toml::array& nodes) const {
-  // Meshes and generators are leaves here (generators are acyclic by construction).
+  // Meshes and generators are leaves here (generators are acyclic by construction). Iterative
+  // DFS (a chain of 10^5 nodes would overflow a recursive one): `path` holds the nodes from where
+  // the walk started, each with its next instance.
   enum : uint8_t { kNew, kActive, kDone };
   std::vector<uint8_t> state(nodes.size(), kNew);
-  std::vector<std::string> path;
-  const auto visit = [&](size_t i, auto&& self) -> void {
-    state[i] = kActive;
-    const toml::table& t = *nodes[i].as_table();
-    path.push_back(t["name"].value<std::string>().value());
-    const toml::array& list = *t["instances"].as_array();
-    for (size_t k = 0; k < list.size(); ++k) {
+  struct OnPath {
+    size_t node, next;
+  };
+  const auto instancesOf = [&](size_t i) -> const toml::array& {
+    return *(*nodes[i].as_table())["instances"].as_array();
+  };
+  for (size_t start = 0; start < nodes.size(); ++start) {
+    if (state[start] != kNew) continue;
+    std::vector<OnPath> path{{start, 0}};
+    state[start] = kActive;
+    while (!path.empty()) {
+      OnPath& top = path.back();
+      const toml::array& list = instancesOf(top.node);
+      if (top.next == list.size()) {
+        state[top.node] = kDone;
+        path.pop_back();
+        continue;
+      }
+      const size_t k = top.next++;
       const toml::node& ref = *list[k].as_table()->get("node");
       const Entry& e = names_.find(ref.value<std::string>().value())->second;
       if (e.kind != Kind::kNode || state[e.index] == kDone) continue;
-      if (state[e.index] == kActive) {
-        std::string cycle;
-        bool on = false;
-        for (const std::string& p : path) {
-          on = on || p == ref.value<std::string>().value();
-          if (on) cycle += p + " -> ";
-        }
-        fail(ref, item("nodes[" + std::to_string(i) + "].instances", k) + ".node",
-             "instancing cycle: " + cycle + ref.value<std::string>().value());
-      }
-      self(e.index, self);
+      const std::string field = item("nodes[" + std::to_string(top.node) + "].instances", k) + ".node";
+      if (state[e.index] == kActive) fail(ref, field, "instancing cycle: " + cycleText(nodes, path, e.index));
+      if (path.size() > size_t(kMaxInstanceDepth))
+        fail(ref, field,
+             "instances nest deeper than " + std::to_string(kMaxInstanceDepth) + " levels");
+      state[e.index] = kActive;
+      path.push_back({e.index, 0});
     }
-    path.pop_back();
-    state[i] = kDone;
-  };
-  for (size_t i = 0; i < nodes.size(); ++i)
-    if (state[i] == kNew) visit(i, visit);
+  }
 }
 
 Scene TomlSceneReader::read() {

@@ -229,6 +229,50 @@ TEST(TomlSceneErrors, Cycle) {
        "nodes[0].instances[0].node", "cycle"});
 }
 
+// A chain of `n` nodes, c0 -> c1 -> ... -> c(n-1) -> tet, rooted at c0.
+std::vector<std::string> chainOf(int n) {
+  std::vector<std::string> lines = {"root = \"c0\""};
+  for (int k = 0; k < n; ++k) {
+    const std::string next = k + 1 < n ? "c" + std::to_string(k + 1) : "tet";
+    lines.insert(lines.end(), {"[[nodes]]", "name = \"c" + std::to_string(k) + "\"",
+                               "instances = [{ node = \"" + next + "\" }]"});
+  }
+  return withTet(lines);
+}
+
+TEST(TomlSceneErrors, ChainsDeeperThan64LevelsAreRefusedAtTheInstance) {
+  // c0 .. c64 are 64 instance levels; c64's instance of c65 is the 65th (line 3k + 4 of node k).
+  for (int n : {66, 100000})
+    expectTomlError({chainOf(n), 3 * 64 + 4, "nodes[64].instances[0].node", "deeper than 64 levels"});
+}
+
+TEST(TomlScene, AChainOf63NodesAndItsMeshIsWithinTheBound) {
+  ScratchDir dir;
+  dir.write("tet.obj", kTetrahedron);
+  // 62 instances between the nodes, one to the mesh file's node: 63 levels.
+  const Scene s = loadScene(dir.write("chain.toml", joinLines(chainOf(63))).string(), true);
+  EXPECT_EQ(s.instanceDepth, 63);
+  EXPECT_EQ(s.expandedTriangles(), 4u);
+}
+
+TEST(TomlSceneErrors, ExpandedCountsBeyond2To62AreRefused) {
+  // Each level instances the one below 10 times: 4 * 10^30 triangles at the root; l17 (4e18)
+  // is the last level under 2^62.
+  std::vector<std::string> lines = {"root = \"l29\""};
+  for (int k = 0; k < 30; ++k) {
+    std::string list;
+    for (int i = 0; i < 10; ++i)
+      list += std::string(i ? ", " : "") + "{ node = \"" + (k ? "l" + std::to_string(k - 1) : "tet") + "\" }";
+    lines.insert(lines.end(), {"[[nodes]]", "name = \"l" + std::to_string(k) + "\"", "instances = [" + list + "]"});
+  }
+  ScratchDir dir;
+  dir.write("tet.obj", kTetrahedron);
+  const auto path = dir.write("huge.toml", joinLines(withTet(lines)));
+  const std::string e = errorOf([&] { loadScene(path.string(), true); });
+  EXPECT_NE(e.find(path.string()), std::string::npos) << e;
+  EXPECT_NE(e.find("node 'l18' expands to more than 2^62 triangles"), std::string::npos) << e;
+}
+
 TEST(TomlSceneErrors, TransformErrors) {
   expectTomlError({withTet({"root = \"n\"", "[[nodes]]", "name = \"n\"",
                             "instances = [{ node = \"tet\", matrix = "
