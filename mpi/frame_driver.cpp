@@ -69,6 +69,11 @@ nlohmann::json FrameDriver::render(Renderer& renderer, const Camera& camera, int
   fb.resize(camera.width(), camera.height());
   FrameStats stats;
   renderer.render(camera, frame, WorkShare{g.rank, g.size}, fb, stats);
+  if (g.size > 1) {  // idle until the slowest rank is done, so "composite" is the exchange alone
+    Stopwatch idle;
+    g.barrier();
+    stats.addStage("wait", idle.seconds());
+  }
   const bool fromIds = renderer.colourFromIds();
   const CompositeStats composite =
       fromIds ? compositeAtRoot(g, fb, strategy_, scene_.expandedTriangles() > 0xffffffffull)

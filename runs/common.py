@@ -18,6 +18,9 @@ DATA = os.path.join(ROOT, "build", "data")
 ENV = dict(os.environ, OMP_WAIT_POLICY="passive", OMPI_ALLOW_RUN_AS_ROOT="1",
            OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
 CORES = os.cpu_count() or 1
+# Frame stages after rendering (mpi/frame_driver.hpp): idle until the slowest rank, the exchange,
+# the root's shading.
+AFTER_RENDER = ("wait", "composite", "shade")
 # How several ranks are started: on a cluster, e.g. LZB_MPIRUN="mpirun --hostfile hosts".
 MPIRUN = os.environ.get("LZB_MPIRUN", "mpirun --oversubscribe").split()
 

@@ -44,32 +44,34 @@ def run():
                         rank_rows.append({
                             "width": w, "height": h, "ranks": ranks, "strategy": strategy,
                             "frame": f["frame"], "rank": r["rank"],
-                            "render_s": sum(v for k, v in stages.items() if k not in ("composite", "shade")),
+                            "render_s": sum(v for k, v in stages.items() if k not in common.AFTER_RENDER),
+                            "wait_s": stages.get("wait", 0.0),
                             "composite_s": stages.get("composite", 0.0),
                             "bytes_sent": r.get("bytes_sent", 0.0),
                             "frame_s": f["seconds"],
                             "oversubscribed": int(ranks > common.CORES)})
                 frame_s = common.median(f["seconds"] for f in frames)
                 composite_s = common.median(f["stages"].get("composite", 0.0) for f in frames)
+                wait_s = common.median(f["stages"].get("wait", 0.0) for f in frames)
                 sent = common.median(f["bytes_sent"] for f in frames)
                 row = {"width": w, "height": h, "ranks": ranks, "strategy": strategy,
                        "threads_per_rank": max(1, common.CORES // ranks),
                        "oversubscribed": int(ranks > common.CORES),
-                       "frame_s": frame_s, "composite_s": composite_s,
+                       "frame_s": frame_s, "wait_s": wait_s, "composite_s": composite_s,
                        "composite_share": composite_s / frame_s if frame_s > 0 else 0.0,
                        "bytes_sent_per_frame": sent,
                        "composite_gb_per_s": sent / composite_s / 1e9 if composite_s > 0 else 0.0,
                        "memcpy_gb_per_s": copy_rate / 1e9}
                 summary.append(row)
                 print(f"{w}x{h} {ranks} ranks {strategy:7s}: frame {frame_s * 1e3:7.1f} ms, "
-                      f"composite {composite_s * 1e3:6.2f} ms ({row['composite_share'] * 100:4.1f} %), "
+                      f"wait {wait_s * 1e3:6.2f} ms, composite {composite_s * 1e3:6.2f} ms ({row['composite_share'] * 100:4.1f} %), "
                       f"{sent / 1e6:6.2f} MB sent", flush=True)
     common.write_csv(os.path.join(HERE, "ranks.csv"), rank_rows,
                      ["width", "height", "ranks", "strategy", "frame", "rank", "render_s",
-                      "composite_s", "bytes_sent", "frame_s", "oversubscribed"], commands)
+                      "wait_s", "composite_s", "bytes_sent", "frame_s", "oversubscribed"], commands)
     common.write_csv(os.path.join(HERE, "summary.csv"), summary,
                      ["width", "height", "ranks", "strategy", "threads_per_rank", "oversubscribed",
-                      "frame_s", "composite_s", "composite_share", "bytes_sent_per_frame",
+                      "frame_s", "wait_s", "composite_s", "composite_share", "bytes_sent_per_frame",
                       "composite_gb_per_s", "memcpy_gb_per_s"], commands)
 
 

@@ -47,7 +47,7 @@ def breakdown(frames):
     """Medians over frames of the frame time and its parts."""
     parts = {"frame_s": [], "render_s": [], "composite_s": [], "shade_s": [], "imbalance_s": []}
     for f in frames:
-        per_rank = [sum(v for k, v in r["stages"].items() if k not in ("composite", "shade"))
+        per_rank = [sum(v for k, v in r["stages"].items() if k not in common.AFTER_RENDER)
                     for r in f["ranks"]]
         parts["frame_s"].append(f["seconds"])
         parts["render_s"].append(max(per_rank))
@@ -55,6 +55,16 @@ def breakdown(frames):
         parts["shade_s"].append(f["stages"].get("shade", 0.0))
         parts["imbalance_s"].append(max(per_rank) - sum(per_rank) / len(per_rank))
     return {k: common.median(v) for k, v in parts.items()}
+
+
+def save(rows, stage_rows, commands):
+    common.write_csv(os.path.join(HERE, "speedup.csv"), rows,
+                     ["scene", "triangles", "width", "height", "method", "ranks", "threads",
+                      "oversubscribed", "frame_s", "render_s", "composite_s", "shade_s",
+                      "imbalance_s", "speedup", "efficiency"], commands)
+    common.write_csv(os.path.join(HERE, "stages.csv"), stage_rows,
+                     ["scene", "width", "height", "method", "ranks", "threads", "stage", "seconds"],
+                     commands)
 
 
 def run():
@@ -92,13 +102,7 @@ def run():
                           f"(x{row['speedup']:.2f}; render {b['render_s'] * 1e3:.1f}, composite "
                           f"{b['composite_s'] * 1e3:.1f}, shade {b['shade_s'] * 1e3:.1f}, imbalance "
                           f"{b['imbalance_s'] * 1e3:.1f} ms)", flush=True)
-    common.write_csv(os.path.join(HERE, "speedup.csv"), rows,
-                     ["scene", "triangles", "width", "height", "method", "ranks", "threads",
-                      "oversubscribed", "frame_s", "render_s", "composite_s", "shade_s",
-                      "imbalance_s", "speedup", "efficiency"], commands)
-    common.write_csv(os.path.join(HERE, "stages.csv"), stage_rows,
-                     ["scene", "width", "height", "method", "ranks", "threads", "stage", "seconds"],
-                     commands)
+                    save(rows, stage_rows, commands)  # after every run: a long study keeps its part
 
 
 def plot():

@@ -16,7 +16,7 @@ struct RenderArgs {
   std::string reference;  // empty: none
   bool subsamples = false;  // store the 4x4 sub-sample IDs and box colour in each EXR
   std::string out = "out";
-  std::string composite = "reduce";  // mpi/composite.hpp
+  std::string composite = "tiles";  // mpi/composite.hpp; the fastest in runs/composite
   int frameGroups = 1;                // frame-parallel batches
   int threads = 0;  // 0: the cores this rank owns
   uint64_t seed = 1;

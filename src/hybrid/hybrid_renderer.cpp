@@ -118,8 +118,12 @@ void HybridRenderer::drawPoints(LzbRenderer::Frame& f, const PointParams& pp, in
                                 FrameStats& stats) {
   const Camera& camera = *f.camera;
   const SampleStream stream(options_.seed, uint64_t(frame));
-  const std::vector<SampledLeaf> leaves =
+  const SampledUnits units =
       sampledLeaves(lzb_.accel(), areas_, lzb_.culled(), *rule_, camera, pp, stream);
+  const std::vector<SampledLeaf>& leaves = units.leaves;
+  // Nothing the rays could meet is sampled (the rays stay in the culled frustum): they walk
+  // unfiltered, which is much cheaper through instances (city: pvl_find 64 -> 43 ms at 1080p).
+  if (units.accepted == 0) f.leafFilter = nullptr;
   std::vector<double> costs(leaves.size());
   double total = 0.0;
   for (size_t i = 0; i < leaves.size(); ++i) total += costs[i] = double(leaves[i].samples);
@@ -149,20 +153,22 @@ void HybridRenderer::countPixels(const LzbRenderer::Frame& f, const Framebuffer&
                                  FrameStats& stats) const {
   const ScreenTiles tiles(fb.width, fb.height);
   const std::vector<uint8_t>& open = lzb_.unfinishedMask();
-  const int side = ScreenTiles::kDefaultSide, columns = tiles.columns();
+  const std::vector<int> mine = tiles.owned(f.share);
   uint64_t samplePixels = 0, pvlPixels = 0;
 #pragma omp parallel for schedule(static) num_threads(options_.threads) reduction(+ : samplePixels, pvlPixels)
-  for (int y = 0; y < fb.height; ++y)
-    for (int x = 0; x < fb.width; ++x) {
-      const int tile = (y / side) * columns + x / side;
-      const size_t i = fb.index(x, y);
-      if (tile % f.share.size != f.share.rank || !open[i]) continue;
-      if (pointsDrawn_ && points_.covered(i) &&
-          nearer(points_.depth[i], points_.id[i], fb.depth[i], fb.id[i]))
-        ++samplePixels;
-      else if (fb.covered(i))
-        ++pvlPixels;
-    }
+  for (size_t k = 0; k < mine.size(); ++k) {
+    const TileRect r = tiles.tile(mine[k]);
+    for (int y = r.y0; y < r.y1; ++y)
+      for (int x = r.x0; x < r.x1; ++x) {
+        const size_t i = fb.index(x, y);
+        if (!open[i]) continue;
+        if (pointsDrawn_ && points_.covered(i) &&
+            nearer(points_.depth[i], points_.id[i], fb.depth[i], fb.id[i]))
+          ++samplePixels;
+        else if (fb.covered(i))
+          ++pvlPixels;
+      }
+  }
   stats.setShared("near_pixels", double(fb.size() - f.unfinished));
   stats.addCount("sample_pixels", double(samplePixels));
   stats.addCount("pvl_pixels", double(pvlPixels));

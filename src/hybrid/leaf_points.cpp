@@ -157,13 +157,13 @@ bool SampledLeafRule::nodeDrawnElsewhere(uint32_t node, const LeafPlacement& p) 
   return areas_.nodeMaxArea(node) * p.areaScale * ppu * ppu < thresholdPx_;
 }
 
-std::vector<SampledLeaf> sampledLeaves(const LzbAccel& accel, const LeafAreas& areas,
-                                       const CulledScene& culled, const SampledLeafRule& rule,
-                                       const Camera& camera, const PointParams& params,
-                                       const SampleStream& stream) {
+SampledUnits sampledLeaves(const LzbAccel& accel, const LeafAreas& areas,
+                           const CulledScene& culled, const SampledLeafRule& rule,
+                           const Camera& camera, const PointParams& params,
+                           const SampleStream& stream) {
   const double pixels = double(camera.width()) * double(camera.height());
   const double maxSamples = kMaxLayers * pixels * params.samplesPerPixel;
-  std::vector<SampledLeaf> out;
+  SampledUnits out;
   // A unit gets area x areaScale x (pixels per unit at depthMin)^2 x spp samples, stochastically
   // rounded by a Philox number keyed by the unit: the expected count on average.
   const auto add = [&](uint32_t path, uint32_t leaf, double area, double areaScale, double depthMin) {
@@ -175,7 +175,8 @@ std::vector<SampledLeaf> sampledLeaves(const LzbAccel& accel, const LeafAreas& a
     const auto w = stream.draw(key, 0, kBoxRounding);
     const double whole = std::floor(expected);
     const uint64_t samples = uint64_t(whole) + (unit53(w[0], w[1]) < expected - whole ? 1 : 0);
-    if (samples > 0) out.push_back({path, leaf, key, samples, depthMin});
+    ++out.accepted;
+    if (samples > 0) out.leaves.push_back({path, leaf, key, samples, depthMin});
   };
   size_t l = 0;  // culled.leaves are grouped by path, in path order
   for (uint32_t path = 0; path < culled.paths.size(); ++path) {

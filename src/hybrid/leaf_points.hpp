@@ -71,9 +71,14 @@ struct SampledLeaf {
   double depthMin;
 };
 
+struct SampledUnits {
+  std::vector<SampledLeaf> leaves;  // the units with samples
+  uint64_t accepted = 0;            // units the rule takes, with samples or none
+};
+
 // The placed nodes and culled leaves the rule samples, in cull order (which no rank count changes), with their
 // sample counts.
-std::vector<SampledLeaf> sampledLeaves(const LzbAccel& accel, const LeafAreas& areas,
+SampledUnits sampledLeaves(const LzbAccel& accel, const LeafAreas& areas,
                                        const CulledScene& culled, const SampledLeafRule& rule,
                                        const Camera& camera, const PointParams& params,
                                        const SampleStream& stream);
