@@ -66,8 +66,9 @@ nlohmann::json FrameDriver::render(Renderer& renderer, const Camera& camera, int
   const Group& g = g_;
   g.barrier();  // frame time starts when every rank is ready
   Stopwatch clock;
-  fb.resize(camera.width(), camera.height());
   FrameStats stats;
+  fb.resize(camera.width(), camera.height());
+  stats.addStage("clear", clock.seconds());
   renderer.render(camera, frame, WorkShare{g.rank, g.size}, fb, stats);
   if (g.size > 1) {  // idle until the slowest rank is done, so "composite" is the exchange alone
     Stopwatch idle;
