@@ -175,7 +175,7 @@ def plot():
     lines_a = ", ".join(f"'{data}' index {k} using ($1+{(k - len(methods) / 2) * 0.12}):3 with points pt {5 + k} ps 1.5 title '{m}'"
                         for k, m in enumerate(methods))
     common.gnuplot(f"""
-set terminal pngcairo size 1400,900 font ',10'
+set terminal pngcairo size 1400,900 font ',10' noenhanced
 set output '{os.path.join(HERE, "peers.png")}'
 set multiplot layout 2,1 title 'Every method beside the exact ray caster (median over frames; 2 cores)'
 set xtics ({xtics})
