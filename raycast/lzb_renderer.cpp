@@ -105,8 +105,6 @@ void LzbRenderer::render(const Camera& camera, int /*frame*/, const WorkShare& s
   Frame f;
   f.camera = &camera;
   f.share = share;
-  last_.castPixels.clear();
-  last_.walk = {};
   Stopwatch clock;
   cull(f);
   stats.addStage("cull", clock.lap());
@@ -203,6 +201,9 @@ void LzbRenderer::projectFarObjects(Frame& f) {
 }
 
 void LzbRenderer::castFarRays(Frame& f) {
+  // This frame's cast pixels and walk counts only (the hybrid calls the stages one by one).
+  last_.castPixels.clear();
+  last_.walk = {};
   const Camera& camera = *f.camera;
   const ScreenTiles tiles(camera.width(), camera.height());
   const TileCastInput input{&camera, open_.data(), rayStart(camera, f.zClip), camera.farPlane(),

@@ -48,6 +48,24 @@ TEST(HybridRenderer, IsExactOnTheCity) {
   }
 }
 
+// Where nothing is sampled (the city) the hybrid's rays are lzb's, frame after frame: the walk
+// counts are each frame's own (they once accumulated over the frames of a run).
+TEST(HybridRenderer, WithNothingSampledWalksLikeLzbEveryFrame) {
+  const Scene scene = loadScene("builtin:city?blocks=4", true);
+  HybridRenderer hybrid(scene, testing::lzbRenderOptions(), HybridParams{});
+  LzbRenderer lzb(scene, testing::lzbRenderOptions(), LzbOptions{});
+  for (int f : {0, 1}) {  // (at this size frame 2 samples distant blocks)
+    const Camera cam = testing::pathFrame(scene, f, 4, 192, 144);
+    FrameStats hs, ls;
+    const Framebuffer h = testing::renderFrame(hybrid, cam, {}, &hs);
+    const Framebuffer l = testing::renderFrame(lzb, cam, {}, &ls);
+    EXPECT_EQ(hs.shared.value("sampled_leaves", -1.0), 0.0) << "frame " << f;
+    for (const char* k : {"rays_cast", "octree_leaves_visited", "instance_walks", "pvl_size"})
+      EXPECT_EQ(hs.counts.value(k, -1.0), ls.counts.value(k, -2.0)) << k << ", frame " << f;
+    EXPECT_EQ(h.id, l.id) << "frame " << f;
+  }
+}
+
 TEST(HybridRenderer, SubPixelFieldIsSampledAndShowsVisibleTriangles) {
   const Scene* scene = field();
   if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
