@@ -34,6 +34,9 @@ run starts only once the machine is >= 85 % idle (other jobs can still start dur
 """
 import csv, json, os, statistics, subprocess, sys, tempfile
 
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+import common  # noqa: E402  (idle_fraction, gnuplot, datafile)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 HERE = os.path.join(ROOT, "runs", "lzb")
 LZB = os.environ.get("LZB_BIN", os.path.join(ROOT, "build-lzb", "lzb"))
@@ -67,26 +70,13 @@ COUNTS = ["plane_depth", "plane_reused", "near_triangles", "far_triangles", "unf
           "pvl_size", "oor_objects"]
 
 
-def idle_fraction(seconds=3.0):
-    """Share of CPU time the whole machine spent idle over the next `seconds` (/proc/stat)."""
-    def sample():
-        with open("/proc/stat") as f:
-            vals = [int(v) for v in f.readline().split()[1:]]
-        return vals[3] + vals[4], sum(vals)  # idle + iowait, total
-    import time
-    i0, t0 = sample()
-    time.sleep(seconds)
-    i1, t1 = sample()
-    return (i1 - i0) / max(t1 - t0, 1)
-
-
 def wait_quiet(limit_s=180):
     """The machine is shared (2 cores): start a measurement only when it is >= 85 % idle, so
     other jobs do not decide the result. Gives up after limit_s and says so."""
     import time
     start = time.time()
     while time.time() - start < limit_s:
-        if idle_fraction() >= 0.85:
+        if common.idle_fraction(3.0) >= 0.85:
             return
         time.sleep(10)
     print("warning: the machine stayed busy; measuring anyway", flush=True)
@@ -183,21 +173,6 @@ def read_csv(name):
     return rows
 
 
-def gnuplot(script):
-    subprocess.run(["gnuplot"], input=script, text=True, check=True)
-
-
-def datafile(blocks):
-    """Writes gnuplot data blocks (lists of rows of numbers) to a temporary file."""
-    f = tempfile.NamedTemporaryFile("w", suffix=".dat", delete=False)
-    for block in blocks:
-        for row in block:
-            f.write(" ".join(str(x) for x in row) + "\n")
-        f.write("\n\n")
-    f.close()
-    return f.name
-
-
 # ---------------------------------------------------------------------------------------------
 # The paper's experiment.
 
@@ -278,10 +253,10 @@ def plot_paper():
     blocks = [[(f["frame"], f["zbuffer_s"] * 1e3) for f in frames if f["stage"] == "final"]]
     for st in names:
         blocks.append([(f["frame"], f["lzb_s"] * 1e3) for f in frames if f["stage"] == st])
-    data = datafile(blocks)
+    data = common.datafile(blocks)
     plots = [f"'{data}' index 0 with lines lw 2 lc rgb 'black' title 'zbuffer'"]
     plots += [f"'{data}' index {i + 1} with lines title 'lzb {st}'" for i, st in enumerate(names)]
-    gnuplot(f"""
+    common.gnuplot(f"""
 set terminal pngcairo size 900,500
 set output '{os.path.join(HERE, "paper_frame_time.png")}'
 set title 'City 1.8 M triangles, 512x512, {THREADS} threads: frame time along the circle'
@@ -303,14 +278,11 @@ plot {', '.join(plots)}
         lines.append([f"{r['stage']}"] + vals + [other])
     zb = mean(r["zbuffer_mean_s"] for r in rows) * 1e3  # the z-buffer of every run, averaged
     lines.append(["zbuffer"] + [0.0] * len(parts) + [zb])
-    f = tempfile.NamedTemporaryFile("w", suffix=".dat", delete=False)
-    for l in lines:
-        f.write(" ".join(str(x) for x in l) + "\n")
-    f.close()
-    cols = " ".join(f"'{f.name}' using {i + 2}{':xtic(1)' if i == 0 else ''} title '{n}',"
+    data = common.datafile([lines])
+    cols = " ".join(f"'{data}' using {i + 2}{':xtic(1)' if i == 0 else ''} title '{n}',"
                     for i, n in enumerate([p.replace("_", " ") for p in parts] +
                                           ["other / z-buffer"]))
-    gnuplot(f"""
+    common.gnuplot(f"""
 set terminal pngcairo size 1000,500
 set output '{os.path.join(HERE, "paper_stages.png")}'
 set title 'Mean frame time per stage (80 frames, city 1.8 M triangles, 512x512)'
@@ -323,7 +295,7 @@ set key outside right
 set grid y
 plot {cols.rstrip(',')}
 """)
-    os.unlink(f.name)
+    os.unlink(data)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -367,14 +339,14 @@ def plot_occluders():
     blocks = [[(r["K"], r["tests_per_ray"], r["pvl_size"], r["pvl_find_median_s"] * 1e3,
                 r["lzb_median_s"] * 1e3) for r in rows if r["mode"] == m] for m in modes]
     lazy = [r for r in rows if r["mode"] == "lazy"][0]
-    data = datafile(blocks)
+    data = common.datafile(blocks)
 
     def panel(col, label, lazyval):
         p = ", ".join(f"'{data}' index {i} using 1:{col} with linespoints title '{m}'"
                       for i, m in enumerate(modes))
         return f"set ylabel '{label}'\nplot {p}, {lazyval} with lines dt 2 lc rgb 'black' title 'all'\n"
 
-    gnuplot(f"""
+    common.gnuplot(f"""
 set terminal pngcairo size 1200,400
 set output '{os.path.join(HERE, "occluders.png")}'
 set multiplot layout 1,4 title 'Local occluders in the final stage (city 1.8 M, 512x512; dashed: every triangle tested)'
@@ -490,12 +462,12 @@ def plot_size():
     for fam in fams:
         blocks.append([(r["triangles"], r["lzb_mean_s"] * 1e3, r["zbuffer_mean_s"] * 1e3)
                        for r in rows if r["family"] == fam])
-    data = datafile(blocks)
+    data = common.datafile(blocks)
     p = []
     for i, fam in enumerate(fams):
         p.append(f"'{data}' index {i} using 1:2 with linespoints pt 7 title 'lzb {fam}'")
         p.append(f"'{data}' index {i} using 1:3 with linespoints pt 5 dt 2 title 'zbuffer {fam}'")
-    gnuplot(f"""
+    common.gnuplot(f"""
 set terminal pngcairo size 800,500
 set output '{os.path.join(HERE, "size_scene.png")}'
 set title 'Frame time against scene size (512x512, {THREADS} threads, mean over the path)'
@@ -517,12 +489,12 @@ plot {', '.join(p)}
         for fam in fams:
             blocks.append([(f[measure], f["lzb_s"] * 1e3, f["zbuffer_s"] * 1e3)
                            for f in frames if f["family"] == fam and f["triangles"] == chosen[fam]])
-        data = datafile(blocks)
+        data = common.datafile(blocks)
         p = []
         for i, fam in enumerate(fams):
             p.append(f"'{data}' index {i} using 1:2 with points pt 7 title 'lzb {fam} {chosen[fam] / 1e6:.1f} M'")
             p.append(f"'{data}' index {i} using 1:3 with points pt 6 title 'zbuffer {fam} {chosen[fam] / 1e6:.1f} M'")
-        gnuplot(f"""
+        common.gnuplot(f"""
 set terminal pngcairo size 900,500
 set output '{os.path.join(HERE, name)}'
 set key outside right
