@@ -31,6 +31,7 @@ class LzbMethod : public Method {
   std::string walk_;  // empty: the stage's own
   std::string nearRender_ = "native";
   std::string pvlRender_ = "native";
+  std::string farRays_ = "embree";
   LzbOptions options_;
 };
 
@@ -52,6 +53,10 @@ void LzbMethod::addOptions(CLI::App& c) {
       ->capture_default_str();
   c.add_option("--occluder-mode", occluderMode_,
                "lzb: local occluder selection: static | dynamic | hybrid")
+      ->capture_default_str();
+  c.add_option("--lzb-rays", farRays_,
+               "lzb: who casts the far rays of the PVL stages: embree (each hit recorded as the "
+               "octree leaves around it) | walk (the paper's octree walk, with its occluders)")
       ->capture_default_str();
   c.add_option("--lzb-walk", walk_,
                "lzb: ray-octree walk: topdown | coherent (default: coherent for final, else "
@@ -83,6 +88,7 @@ void LzbMethod::validate() {
   if (o.walkOverride) o.walk = parseOctreeWalk(walk_, "--lzb-walk");
   o.nearRender = parseZBufferKind(nearRender_, "--near-render");
   o.pvlRender = parseZBufferKind(pvlRender_, "--pvl-render");
+  o.farRays = parseFarRays(farRays_, "--lzb-rays");
   lzb::validate(o);
 }
 
@@ -91,7 +97,6 @@ nlohmann::json LzbMethod::parameters() const {
   nlohmann::json j = {{"stage", toString(o.stage)},
                       {"plane", o.dynamicPlane() ? nlohmann::json(o.costPlane ? "cost" : "auto")
                                                  : nlohmann::json(o.planeFraction)},
-                      {"octree_walk", toString(o.octreeWalk())},
                       {"leaf_entries", o.leafEntries},
                       {"instance_leaf_entries", o.instanceLeafEntries}};
   if (o.dynamicPlane()) {
@@ -99,8 +104,12 @@ nlohmann::json LzbMethod::parameters() const {
     j["plane_reuse"] = o.planeReuse;
   }
   j["near_render"] = toString(o.nearRender);
-  if (o.usesPvl()) j["pvl_render"] = toString(o.pvlRender);
-  if (o.usesOccluders()) {
+  if (o.usesPvl()) {
+    j["pvl_render"] = toString(o.pvlRender);
+    j["far_rays"] = toString(o.farRays);
+  }
+  if (o.usesWalk()) j["octree_walk"] = toString(o.octreeWalk());
+  if (o.usesWalk() && o.usesOccluders()) {
     j["occluders"] = o.occluders;
     j["occluder_mode"] = toString(o.occluderMode);
   }

@@ -121,6 +121,34 @@ bool ScreenPolygon::contains(double x, double y) const {
   return true;
 }
 
+bool ScreenPolygon::rowSpan(int y, int xa, int xb, int& first, int& last) const {
+  const double py = y + 0.5;
+  if (xa > xb || py < y0 || py > y1) return false;
+  // Each edge bounds the centres' x on one side: contains() accepts e.y px <= bound.
+  double lo = x0, hi = x1;
+  for (int i = 0; i < count; ++i) {
+    const glm::dvec2& a = v[i];
+    const glm::dvec2 e = v[i + 1 == count ? 0 : i + 1] - a;
+    const double bound = e.x * (py - a.y) + e.y * a.x + kEdgeTolerance * std::sqrt(e.x * e.x + e.y * e.y);
+    if (e.y > 0.0) {
+      hi = std::min(hi, bound / e.y);
+    } else if (e.y < 0.0) {
+      lo = std::max(lo, bound / e.y);
+    } else if (bound < 0.0) {
+      return false;
+    }
+  }
+  const double f = std::ceil(lo - 0.5), l = std::floor(hi - 0.5);
+  first = f < xa ? xa : (f > xb ? xb + 1 : int(f));
+  last = l > xb ? xb : (l < xa ? xa - 1 : int(l));
+  // The divisions round: settle both ends with contains() itself, so the span is exactly its set.
+  while (first <= last && !contains(first + 0.5, py)) ++first;
+  while (first > xa && first <= last + 1 && contains(first - 0.5, py)) --first;
+  while (last >= first && !contains(last + 0.5, py)) --last;
+  while (last < xb && last + 1 >= first && contains(last + 1.5, py)) ++last;
+  return first <= last;
+}
+
 ScreenPolygon projectLeaf(const LzbAccel& accel, const CullPath& path, uint32_t leaf,
                           const Camera& camera, double clipDepth) {
   return project(Projector(camera, path.world), accel.node(path.node).contentBox(leaf), camera,

@@ -53,6 +53,9 @@ struct ScreenPolygon {
   double depthMax = 0.0;       // OOR objects: the deepest view depth of the projected box
   glm::dvec2 v[kMaxVertices];  // hull, turning left in (x, y-down) coordinates
   bool contains(double x, double y) const;
+  // The pixels [first, last] of row y within columns [xa, xb] whose centres contains() accepts
+  // (an interval: the polygon is convex); false when there are none.
+  bool rowSpan(int y, int xa, int xb, int& first, int& last) const;
 };
 
 // Projects the part of `leaf` of `path` (see CulledScene) behind view depth clipDepth (> 0).

@@ -31,6 +31,8 @@ constexpr const char* kWalkNames[] = {"topdown", "coherent"};
 constexpr OctreeWalk kWalks[] = {OctreeWalk::kTopDown, OctreeWalk::kCoherent};
 constexpr const char* kZBufferKindNames[] = {"native", "gl"};
 constexpr ZBufferKind kZBufferKinds[] = {ZBufferKind::kNative, ZBufferKind::kGl};
+constexpr const char* kFarRaysNames[] = {"embree", "walk"};
+constexpr FarRays kFarRays[] = {FarRays::kEmbree, FarRays::kWalk};
 
 }  // namespace
 
@@ -48,6 +50,10 @@ OctreeWalk parseOctreeWalk(const std::string& text, const std::string& field) {
 
 ZBufferKind parseZBufferKind(const std::string& text, const std::string& field) {
   return parseName(text, field, kZBufferKindNames, kZBufferKinds);
+}
+
+FarRays parseFarRays(const std::string& text, const std::string& field) {
+  return parseName(text, field, kFarRaysNames, kFarRays);
 }
 
 void parsePlane(const std::string& text, const std::string& field, LzbOptions& options) {
@@ -76,6 +82,9 @@ std::string toString(OctreeWalk walk) {
 }
 std::string toString(ZBufferKind kind) {
   return kZBufferKindNames[int(kind)];
+}
+std::string toString(FarRays rays) {
+  return kFarRaysNames[int(rays)];
 }
 
 void validate(const LzbOptions& o) {

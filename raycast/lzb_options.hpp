@@ -26,6 +26,10 @@ enum class OctreeWalk { kTopDown, kCoherent };
 // (src/zbuffer/native_raster.hpp; the PVL only at the unfinished pixels), or OSMesa.
 enum class ZBufferKind { kNative, kGl };
 
+// Who casts the far rays of the PVL stages: Embree, each hit recorded as the octree leaves around
+// its hit point (lzb_hit_leaves.hpp), or the paper's own octree walk (lzb_ray_walk.hpp).
+enum class FarRays { kEmbree, kWalk };
+
 struct LzbOptions {
   LzbStage stage = LzbStage::kFinal;
   double planeFraction = 0.0;  // 0: dynamic plane (coarse ray casting); else static, in (0, 1)
@@ -41,10 +45,13 @@ struct LzbOptions {
   ZBufferKind nearRender = ZBufferKind::kNative;  // faster on the paper experiment (LZB.md)
   ZBufferKind pvlRender = ZBufferKind::kNative;   // faster on the paper experiment (LZB.md)
   int depthComplexityGrid = 0;  // diagnostic: G x G rays count every surface (0: off)
+  FarRays farRays = FarRays::kEmbree;  // faster on the paper experiment (LZB.md)
 
   bool dynamicPlane() const { return planeFraction == 0.0; }
   bool usesPvl() const { return stage != LzbStage::kNaive; }
   bool usesOccluders() const { return stage >= LzbStage::kSelective; }
+  // The PVL is found by the octree walk (occluders and the octree walk matter only then).
+  bool usesWalk() const { return usesPvl() && farRays == FarRays::kWalk; }
   bool usesOor() const { return stage >= LzbStage::kOor; }
   OctreeWalk octreeWalk() const {
     if (walkOverride) return walk;
@@ -57,6 +64,7 @@ LzbStage parseLzbStage(const std::string& text, const std::string& field);
 OccluderMode parseOccluderMode(const std::string& text, const std::string& field);
 OctreeWalk parseOctreeWalk(const std::string& text, const std::string& field);
 ZBufferKind parseZBufferKind(const std::string& text, const std::string& field);
+FarRays parseFarRays(const std::string& text, const std::string& field);
 // --plane: "auto" (dynamic, mean depth), "cost" (dynamic, cost model) or a fraction in (0, 1)
 // (static); sets planeFraction and costPlane.
 void parsePlane(const std::string& text, const std::string& field, LzbOptions& options);
@@ -64,6 +72,7 @@ std::string toString(LzbStage stage);
 std::string toString(OccluderMode mode);
 std::string toString(OctreeWalk walk);
 std::string toString(ZBufferKind kind);
+std::string toString(FarRays rays);
 
 // Throws InputError naming the option (CLI spelling) for an out-of-range value.
 void validate(const LzbOptions& options);

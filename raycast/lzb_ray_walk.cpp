@@ -37,7 +37,6 @@ enum class Hit { kMiss, kNearMiss, kHit };
 // near miss: the z-buffer's fixed-point rasterization may still cover that pixel centre.
 Hit intersect(const Mesh& mesh, uint32_t tri, const WalkRay& ray, double tLo, double tHi,
               double pixelScale, double& tOut) {
-  constexpr double kNearMissPixels = 0.05;
   const glm::dvec3 a(mesh.vertex(tri, 0)), b(mesh.vertex(tri, 1)), c(mesh.vertex(tri, 2));
   const glm::dvec3 e1 = b - a, e2 = c - a;
   const glm::dvec3 p = glm::cross(ray.d, e2);

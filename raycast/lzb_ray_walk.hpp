@@ -59,6 +59,11 @@ namespace lzb {
 
 enum class LeafTest { kAll, kStatic, kDynamic, kHybrid };
 
+// A ray passing a triangle by less than this many pixels (at the hit plane) may still see it in
+// the z-buffer, which rasterizes in fixed point: the walk's near misses, and the radius around
+// an Embree hit whose leaves the PVL takes (lzb_hit_leaves.hpp).
+constexpr double kNearMissPixels = 0.05;
+
 // A ray set up for slab tests against closed boxes. A direction component whose reciprocal is
 // not finite (zero or subnormal) is treated as zero: containment on that axis instead of a
 // division, so no 0 * inf NaN (over any finite t the ray moves less than 1e-290 along it).

@@ -73,8 +73,10 @@ LzbRenderer::LzbRenderer(const Scene& scene, const RenderOptions& options, const
   eo.threads = options_.threads;
   embree_ = std::make_unique<EmbreeScene>(scene, eo);
   raster_ = std::make_unique<TriangleRasterizer>(scene);
-  for (int t = 0; t < options_.threads; ++t)
+  for (int t = 0; t < options_.threads; ++t) {
     walkers_.emplace_back(*accel_, leafTestFor(lzb_), lzb_.octreeWalk());
+    recorders_.emplace_back(*accel_);
+  }
 }
 
 LzbRenderer::~LzbRenderer() = default;
@@ -204,60 +206,108 @@ void LzbRenderer::castFarRays(Frame& f) {
   // This frame's cast pixels and walk counts only (the hybrid calls the stages one by one).
   last_.castPixels.clear();
   last_.walk = {};
+  last_.hitLeaves = {};
   const Camera& camera = *f.camera;
-  const ScreenTiles tiles(camera.width(), camera.height());
   const TileCastInput input{&camera, open_.data(), rayStart(camera, f.zClip), camera.farPlane(),
                             f.oor};
   const long count = f.unfinished > 0 ? long(f.tiles.size()) : 0;
   std::vector<std::vector<uint32_t>> tilePixels(static_cast<size_t>(count));
-  const int threads = options_.threads;
   if (!lzb_.usesPvl()) {
-    farPass_.resize(camera.width(), camera.height());  // and clears
-    f.farApart = true;
-#pragma omp parallel num_threads(threads)
-    {
-      TileScratch scratch;
-      TileCastCounts local;
-#pragma omp for schedule(dynamic, 1)
-      for (long k = 0; k < count; ++k) {
-        const int t = f.tiles[size_t(k)];
-        castTileEmbree(*embree_, tiles.tile(t), t, input, scratch, farPass_, local,
-                       &tilePixels[size_t(k)]);
-      }
-#pragma omp critical
-      f.tileCounts.add(local);
-    }
-    last_.pvl = {};
+    castNaiveRays(f, input, tilePixels);
   } else {
+    // The walk alone knows what a composing method draws elsewhere (its LeafFilter).
+    if (f.leafFilter && !lzb_.usesWalk())
+      throw std::logic_error("lzb: a leaf filter needs the octree walk (--lzb-rays walk)");
     if (parts_.size() < size_t(count)) parts_.resize(size_t(count));
-    for (RayWalker& w : walkers_) {
-      w.setPixelScale(camera.pixelsPerUnitAt(1.0));
-      w.setLeafFilter(f.leafFilter, camera.position(), camera.forward());
-    }
     for (long k = 0; k < count; ++k) parts_[size_t(k)].clear();
-#pragma omp parallel num_threads(threads)
-    {
-      TileScratch scratch;
-      TileCastCounts local;
-      RayWalker& walker = walkers_[size_t(omp_get_thread_num())];
-#pragma omp for schedule(dynamic, 1)
-      for (long k = 0; k < count; ++k) {
-        const int t = f.tiles[size_t(k)];
-        castTilePvl(walker, tiles.tile(t), t, input, scratch, parts_[size_t(k)], local,
-                    &tilePixels[size_t(k)]);
-        parts_[size_t(k)].finish();
-      }
-#pragma omp critical
-      f.tileCounts.add(local);
-    }
-    for (RayWalker& w : walkers_) {
-      last_.walk.add(w.counts);
-      w.counts = {};
-    }
-    last_.pvl =
-        mergePvl(*accel_, std::span<const PvlPart>(parts_.data(), size_t(count)), threads);
+    if (lzb_.usesWalk())
+      findPvlByWalk(f, input, tilePixels);
+    else
+      findPvlByEmbree(f, input, tilePixels);
+    last_.pvl = mergePvl(*accel_, std::span<const PvlPart>(parts_.data(), size_t(count)),
+                         options_.threads);
   }
   for (auto& p : tilePixels) last_.castPixels.insert(last_.castPixels.end(), p.begin(), p.end());
+}
+
+void LzbRenderer::castNaiveRays(Frame& f, const TileCastInput& input,
+                                std::vector<std::vector<uint32_t>>& tilePixels) {
+  const Camera& camera = *f.camera;
+  const ScreenTiles tiles(camera.width(), camera.height());
+  const long count = long(tilePixels.size());
+  farPass_.resize(camera.width(), camera.height());  // and clears
+  f.farApart = true;
+#pragma omp parallel num_threads(options_.threads)
+  {
+    TileScratch scratch;
+    TileCastCounts local;
+#pragma omp for schedule(dynamic, 1)
+    for (long k = 0; k < count; ++k) {
+      const int t = f.tiles[size_t(k)];
+      castTileEmbree(*embree_, tiles.tile(t), t, input, scratch, farPass_, local,
+                     &tilePixels[size_t(k)]);
+    }
+#pragma omp critical
+    f.tileCounts.add(local);
+  }
+  last_.pvl = {};
+}
+
+void LzbRenderer::findPvlByWalk(Frame& f, const TileCastInput& input,
+                                std::vector<std::vector<uint32_t>>& tilePixels) {
+  const Camera& camera = *f.camera;
+  const ScreenTiles tiles(camera.width(), camera.height());
+  const long count = long(tilePixels.size());
+  for (RayWalker& w : walkers_) {
+    w.setPixelScale(camera.pixelsPerUnitAt(1.0));
+    w.setLeafFilter(f.leafFilter, camera.position(), camera.forward());
+  }
+#pragma omp parallel num_threads(options_.threads)
+  {
+    TileScratch scratch;
+    TileCastCounts local;
+    RayWalker& walker = walkers_[size_t(omp_get_thread_num())];
+#pragma omp for schedule(dynamic, 1)
+    for (long k = 0; k < count; ++k) {
+      const int t = f.tiles[size_t(k)];
+      castTilePvl(walker, tiles.tile(t), t, input, scratch, parts_[size_t(k)], local,
+                  &tilePixels[size_t(k)]);
+      parts_[size_t(k)].finish();
+    }
+#pragma omp critical
+    f.tileCounts.add(local);
+  }
+  for (RayWalker& w : walkers_) {
+    last_.walk.add(w.counts);
+    w.counts = {};
+  }
+}
+
+void LzbRenderer::findPvlByEmbree(Frame& f, const TileCastInput& input,
+                                  std::vector<std::vector<uint32_t>>& tilePixels) {
+  const Camera& camera = *f.camera;
+  const ScreenTiles tiles(camera.width(), camera.height());
+  const long count = long(tilePixels.size());
+  for (HitLeafRecorder& r : recorders_) r.setPixelScale(camera.pixelsPerUnitAt(1.0));
+#pragma omp parallel num_threads(options_.threads)
+  {
+    TileScratch scratch;
+    TileCastCounts local;
+    HitLeafRecorder& recorder = recorders_[size_t(omp_get_thread_num())];
+#pragma omp for schedule(dynamic, 1)
+    for (long k = 0; k < count; ++k) {
+      const int t = f.tiles[size_t(k)];
+      castTileHits(*embree_, recorder, tiles.tile(t), t, input, scratch, parts_[size_t(k)], local,
+                   &tilePixels[size_t(k)]);
+      parts_[size_t(k)].finish();
+    }
+#pragma omp critical
+    f.tileCounts.add(local);
+  }
+  for (HitLeafRecorder& r : recorders_) {
+    last_.hitLeaves.add(r.counts);
+    r.counts = {};
+  }
 }
 
 void LzbRenderer::renderPvl(Frame& f, Framebuffer& fb) {
@@ -323,8 +373,8 @@ void LzbRenderer::countFrame(const Frame& f, FrameStats& stats) const {
   if (f.oor) stats.setShared("oor_objects", double(f.oor->size()));
   // This rank's share.
   stats.addCount("rays_cast", double(f.tileCounts.cast));
-  if (f.oor) stats.addCount("oor_polygon_tests", double(f.tileCounts.polygonTests));
-  if (lzb_.usesPvl()) {
+  if (f.oor) stats.addCount("oor_polygon_rows", double(f.tileCounts.polygonRows));
+  if (lzb_.usesWalk()) {
     const RayWalkCounts& w = last_.walk;
     stats.addCount("octree_nodes_visited", double(w.nodesVisited));
     stats.addCount("octree_leaves_visited", double(w.leavesVisited));
@@ -332,6 +382,13 @@ void LzbRenderer::countFrame(const Frame& f, FrameStats& stats) const {
     stats.addCount("visibility_tests", double(w.visibilityTests));
     stats.addCount("instance_walks", double(w.instanceWalks));
     stats.addCount("rays_hit", double(w.hits));
+  } else if (lzb_.usesPvl()) {
+    const HitLeafCounts& h = last_.hitLeaves;
+    stats.addCount("octree_nodes_visited", double(h.nodesVisited));
+    stats.addCount("rays_hit", double(h.hits));
+    stats.addCount("hit_placements_resolved", double(h.resolves));
+  }
+  if (lzb_.usesPvl()) {
     stats.addCount("pvl_size", double(last_.pvl.triangles));
     stats.addCount("pvl_leaves", double(last_.pvl.leaves));
     // Triangles (pieces, after clipping) that may cover a pixel centre of the image.

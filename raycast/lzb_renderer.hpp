@@ -23,6 +23,7 @@
 #include "raycast/lzb_accel.hpp"
 #include "raycast/lzb_cull.hpp"
 #include "raycast/lzb_draw_lists.hpp"
+#include "raycast/lzb_hit_leaves.hpp"
 #include "raycast/lzb_oor.hpp"
 #include "raycast/lzb_options.hpp"
 #include "raycast/lzb_plane.hpp"
@@ -77,7 +78,7 @@ class LzbRenderer : public Renderer {
   // 5a. OOR objects: projected content boxes of the far leaves (oor and final stages).
   void projectFarObjects(Frame& f);
   // 5b. The far scene from the unfinished pixels of this rank's tiles: naive Embree rays into
-  // farPass_, or PVL finding by the octree walk.
+  // farPass_, or PVL finding by Embree (the leaves around each hit) or by the octree walk.
   void castFarRays(Frame& f);
   // 6. The PVL by z-buffer on top of the near pass.
   void renderPvl(Frame& f, Framebuffer& fb);
@@ -94,7 +95,8 @@ class LzbRenderer : public Renderer {
     Framebuffer nearPass;              // ids/depths of the near pass alone (keepNearPass)
     std::vector<uint32_t> castPixels;  // framebuffer indices of the pixels rays were cast from
     DrawLists pvl;                     // this rank's PVL (empty for naive)
-    RayWalkCounts walk;
+    RayWalkCounts walk;                // --lzb-rays walk
+    HitLeafCounts hitLeaves;           // --lzb-rays embree
   };
   const FrameDetail& lastFrame() const { return last_; }
   // Keep a copy of each frame's near pass in lastFrame().nearPass (off: the near pass is drawn
@@ -108,6 +110,13 @@ class LzbRenderer : public Renderer {
 
  private:
   void measureDepthComplexity(const Camera& camera, FrameStats& stats);
+  // castFarRays by engine, each filling tilePixels (per owned tile: the pixels cast).
+  void castNaiveRays(Frame& f, const TileCastInput& input,
+                     std::vector<std::vector<uint32_t>>& tilePixels);
+  void findPvlByWalk(Frame& f, const TileCastInput& input,
+                     std::vector<std::vector<uint32_t>>& tilePixels);
+  void findPvlByEmbree(Frame& f, const TileCastInput& input,
+                       std::vector<std::vector<uint32_t>>& tilePixels);
 
   const Scene& scene_;
   RenderOptions options_;
@@ -116,7 +125,8 @@ class LzbRenderer : public Renderer {
   std::unique_ptr<EmbreeScene> embree_;
   std::unique_ptr<TriangleRasterizer> raster_;
   PartitionPlane plane_;
-  std::vector<RayWalker> walkers_;  // one per thread
+  std::vector<RayWalker> walkers_;          // one per thread (--lzb-rays walk)
+  std::vector<HitLeafRecorder> recorders_;  // one per thread (--lzb-rays embree)
   // Per-frame state kept between frames so its memory is reused (no page faults per frame).
   std::vector<PvlPart> parts_;  // one per owned tile
   CulledScene culled_;

@@ -4,11 +4,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "mpi/decomposition.hpp"
 #include "raycast/embree_scene.hpp"
 #include "raycast/lzb_test_util.hpp"
 #include "raycast/raycast_renderer.hpp"
 #include "raycast/raycast_test_util.hpp"
-#include "mpi/decomposition.hpp"
 
 namespace lzb {
 namespace {
@@ -124,7 +124,8 @@ TEST(LzbRenderer, NativeAndGlZBuffersAgree) {
   for (int f : {0, 2, 3}) {
     const Camera cam = pathFrame(scene, f, 4, 192, 144);
     // A static plane deep in the frustum: the near pass gets a good part of the image.
-    LzbOptions nativeOptions = zbufferOptions(kZBuffers[0]), glOptions = zbufferOptions(kZBuffers[3]);
+    LzbOptions nativeOptions = zbufferOptions(kZBuffers[0]),
+               glOptions = zbufferOptions(kZBuffers[3]);
     nativeOptions.planeFraction = glOptions.planeFraction = 0.6;
     LzbRenderer native(scene, testing::lzbRenderOptions(), nativeOptions);
     LzbRenderer gl(scene, testing::lzbRenderOptions(), glOptions);
@@ -178,17 +179,33 @@ TEST(LzbRenderer, EveryStageMatchesZBufferOnAScannedMesh) {
   expectMatchesZBuffer(loadScene(bunny, true), 160, 120, {0, 1});
 }
 
+// The paper's own octree walk (--lzb-rays walk, with its occluders), kept for the stage study and
+// used by the hybrid: every PVL stage on the same scenes as Embree's rays above.
+TEST(LzbRenderer, WalkedRaysMatchZBuffer) {
+  LzbOptions walk;
+  walk.farRays = FarRays::kWalk;
+  const std::vector<LzbStage> pvl = {LzbStage::kLazy, LzbStage::kSelective, LzbStage::kOor,
+                                     LzbStage::kFinal};
+  expectMatchesZBuffer(loadScene("builtin:city?blocks=4", true), 192, 144, {0, 1}, pvl, walk);
+  expectMatchesZBuffer(testing::nestedScene(21), 160, 120, {0, 2}, pvl, walk);
+  expectMatchesZBuffer(loadScene("builtin:sphereflake?depth=2", true), 160, 120, {0, 1}, pvl, walk);
+  expectMatchesZBuffer(loadScene("builtin:forest?trees=6&levels=1", true), 160, 120, {0}, pvl,
+                       walk);
+}
+
 TEST(LzbRenderer, StaticOccluderSettingsStayExact) {
   const Scene scene = loadScene("builtin:city?blocks=3", true);
   for (OccluderMode mode : {OccluderMode::kStatic, OccluderMode::kDynamic})
     for (int k : {0, 1, 10}) {
       LzbOptions o = stageOptions(LzbStage::kSelective);
+      o.farRays = FarRays::kWalk;  // occluders act in the walk only
       o.occluderMode = mode;
       o.occluders = k;
       ZBufferRenderer zbuffer(scene, testing::lzbRenderOptions());
       LzbRenderer r(scene, testing::lzbRenderOptions(), o);
       const Camera cam = pathFrame(scene, 0, 4, 128, 96);
-      const Accuracy a = compare(renderFrame(r, cam), testing_util::renderReference(zbuffer, scene, cam));
+      const Accuracy a =
+          compare(renderFrame(r, cam), testing_util::renderReference(zbuffer, scene, cam));
       EXPECT_GE(a.exactIdRateCovered, 0.999) << toString(mode) << " K=" << k;
     }
 }
@@ -206,7 +223,8 @@ TEST(LzbRenderer, PlaneInFrontOfEverything) {
   EXPECT_EQ(r.lastFrame().nearPass.size(), img.size());
   EXPECT_EQ(r.lastFrame().nearPass.coveredCount(), 0u);
   EXPECT_EQ(stats.shared.value("unfinished_pixels", 0.0), 128.0 * 96.0);
-  EXPECT_GE(compare(img, testing_util::renderReference(zbuffer, scene, cam)).exactIdRateCovered, 0.999);
+  EXPECT_GE(compare(img, testing_util::renderReference(zbuffer, scene, cam)).exactIdRateCovered,
+            0.999);
 }
 
 TEST(LzbRenderer, PlaneBehindEverythingLeavesAnEmptyFarScene) {
@@ -272,25 +290,29 @@ TEST(LzbRenderer, RaysParallelToOctreePlanes) {
   const Framebuffer ref = renderFrame(zbuffer, cam);
   const ReferenceFrame exact = reduceReference(ref, renderFrame(zbuffer, subsampleCamera(cam)));
   const Framebuffer rays = renderFrame(raycast, cam);
-  for (LzbStage stage : kStages) {
-    LzbOptions o = stageOptions(stage);
-    o.planeFraction = 1e-9;  // everything through the rays
-    LzbRenderer r(scene, testing::lzbRenderOptions(), o);
-    const Framebuffer img = renderFrame(r, cam);
-    if (stage == LzbStage::kNaive) {
-      // Naive is Embree behind the plane, i.e. everywhere here: the ray caster's image. (On the
-      // cubes' diagonals Embree and the z-buffer may pick different triangles of a face.)
-      EXPECT_EQ(img.id, rays.id);
-      continue;
+  for (LzbStage stage : kStages)
+    for (FarRays farRays : {FarRays::kEmbree, FarRays::kWalk}) {
+      LzbOptions o = stageOptions(stage);
+      o.planeFraction = 1e-9;  // everything through the rays
+      o.farRays = farRays;
+      LzbRenderer r(scene, testing::lzbRenderOptions(), o);
+      const Framebuffer img = renderFrame(r, cam);
+      SCOPED_TRACE(toString(farRays));
+      if (stage == LzbStage::kNaive) {
+        // Naive is Embree behind the plane, i.e. everywhere here: the ray caster's image. (On the
+        // cubes' diagonals Embree and the z-buffer may pick different triangles of a face.)
+        EXPECT_EQ(img.id, rays.id);
+        continue;
+      }
+      EXPECT_GE(compare(img, exact).exactIdRateCovered, 0.999) << toString(stage);
+      for (int y = 0; y < cam.height(); ++y)
+        EXPECT_EQ(img.id[img.index(50, y)], ref.id[ref.index(50, y)])
+            << toString(stage) << " " << y;
+      const long missing = missingFromPvl(r, embree, cam);
+      if (missing >= 0) {
+        EXPECT_EQ(missing, 0) << toString(stage);
+      }
     }
-    EXPECT_GE(compare(img, exact).exactIdRateCovered, 0.999) << toString(stage);
-    for (int y = 0; y < cam.height(); ++y)
-      EXPECT_EQ(img.id[img.index(50, y)], ref.id[ref.index(50, y)]) << toString(stage) << " " << y;
-    const long missing = missingFromPvl(r, embree, cam);
-    if (missing >= 0) {
-      EXPECT_EQ(missing, 0) << toString(stage);
-    }
-  }
 }
 
 TEST(LzbRenderer, SameImageForAnyRankAndThreadCount) {
@@ -347,11 +369,20 @@ TEST(LzbRenderer, ReportsStagesAndCounts) {
   EXPECT_EQ(setup.stageSeconds[0].first, "build");
   EXPECT_GT(setup.shared.value("octree_nodes", 0.0), 0.0);
   // Figures every rank computes alike are shared; this rank's share of the work is counted.
-  for (const char* key : {"plane_depth", "plane_reused", "near_triangles", "far_triangles",
-                          "unfinished_pixels"})
+  for (const char* key :
+       {"plane_depth", "plane_reused", "near_triangles", "far_triangles", "unfinished_pixels"})
     EXPECT_TRUE(second.shared.contains(key)) << key;
-  for (const char* key : {"rays_cast", "octree_nodes_visited", "ray_triangle_tests", "pvl_size"})
+  for (const char* key : {"rays_cast", "rays_hit", "octree_nodes_visited", "pvl_size"})
     EXPECT_TRUE(second.counts.contains(key)) << key;
+  EXPECT_TRUE(second.counts.contains("hit_placements_resolved"));  // Embree's rays (the default)
+  EXPECT_FALSE(second.counts.contains("ray_triangle_tests"));
+  LzbOptions walking;
+  walking.farRays = FarRays::kWalk;
+  LzbRenderer walker(scene, testing::lzbRenderOptions(), walking);
+  FrameStats walked;
+  renderFrame(walker, cam, {}, &walked);
+  for (const char* key : {"ray_triangle_tests", "octree_leaves_visited", "instance_walks"})
+    EXPECT_TRUE(walked.counts.contains(key)) << key;  // the paper's walk reports its own work
   EXPECT_EQ(first.shared.value("plane_reused", -1.0), 0.0);
   EXPECT_EQ(second.shared.value("plane_reused", -1.0), 1.0);  // same view: the plane is reused
   EXPECT_EQ(second.shared.value("plane_depth", 0.0), first.shared.value("plane_depth", 1.0));

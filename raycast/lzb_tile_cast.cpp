@@ -19,7 +19,7 @@ TileRays tileRaysToCast(const TileRect& r, int tileIndex, const TileCastInput& i
   const int w = r.x1 - r.x0;
   std::vector<uint8_t>& mask = scratch.mask;
   if (mask.size() < size_t(r.pixels())) mask.resize(size_t(r.pixels()));
-  // mask: 0 finished, 1 unfinished and not cast yet, 2 to cast.
+  // mask: 1 unfinished, 0 finished.
   uint64_t open = 0;
   for (int y = r.y0; y < r.y1; ++y) {
     const uint8_t* row = in.unfinished + size_t(y) * size_t(width) + size_t(r.x0);
@@ -32,40 +32,35 @@ TileRays tileRaysToCast(const TileRect& r, int tileIndex, const TileCastInput& i
   TileRays rays;
   if (open == 0) return rays;
   std::vector<double>& reach = scratch.reach;
-  std::vector<uint32_t>& marked = scratch.marked;
   if (in.oor) {
-    marked.clear();
+    std::vector<uint8_t>& inside = scratch.inside;
+    inside.assign(size_t(r.pixels()), 0);
     reach.assign(size_t(r.pixels()), 0.0);
-    // Object by object: unfinished pixels inside the polygon's bounding box, then inside the
-    // polygon, are marked once (the boolean matrix of the paper). Every bounding box holding a
-    // pixel raises its reach, marked or not.
+    // Object by object: every bounding box holding a pixel raises its reach; the pixels inside
+    // the polygon are marked (the boolean matrix of the paper), a row span at a time.
     for (uint32_t k : in.oor->tile(tileIndex)) {
       const ScreenPolygon& p = in.oor->polygon(k);
       const int xa = std::max(r.x0, int(std::ceil(double(p.x0) - 0.5)));
       const int xb = std::min(r.x1 - 1, int(std::floor(double(p.x1) - 0.5)));
       const int ya = std::max(r.y0, int(std::ceil(double(p.y0) - 0.5)));
       const int yb = std::min(r.y1 - 1, int(std::floor(double(p.y1) - 0.5)));
-      for (int y = ya; y <= yb; ++y)
-        for (int x = xa; x <= xb; ++x) {
-          const size_t i = size_t((y - r.y0) * w + (x - r.x0));
-          uint8_t& m = mask[i];
-          if (m == 0) continue;
-          reach[i] = std::max(reach[i], p.depthMax);
-          if (m != 1) continue;
-          ++counts.polygonTests;
-          if (p.contains(x + 0.5, y + 0.5)) {
-            m = 2;
-            marked.push_back(uint32_t(i));
-          }
-        }
+      for (int y = ya; y <= yb && xa <= xb; ++y) {
+        const size_t row = size_t((y - r.y0) * w - r.x0);
+        double* rowReach = reach.data() + row;
+        for (int x = xa; x <= xb; ++x) rowReach[x] = std::max(rowReach[x], p.depthMax);
+        ++counts.polygonRows;
+        int first, last;
+        if (p.rowSpan(y, xa, xb, first, last))
+          std::fill(inside.data() + row + first, inside.data() + row + last + 1, uint8_t(1));
+      }
     }
-    // Row order (tile-local index order), as without OOR: coherent neighbours for the walk.
-    std::sort(marked.begin(), marked.end());
-    for (uint32_t i : marked) {
-      const int x = r.x0 + int(i % uint32_t(w)), y = r.y0 + int(i / uint32_t(w));
-      rays.pixels.push_back(uint32_t(size_t(y) * size_t(width) + size_t(x)));
-      rays.reach.push_back(std::min(in.tMax, reach[i] * (1.0 + kReachSlack)));
-    }
+    // Row order (tile-local index order): coherent neighbours for the rays.
+    for (int i = 0; i < r.pixels(); ++i)
+      if (mask[size_t(i)] & inside[size_t(i)]) {
+        const int x = r.x0 + i % w, y = r.y0 + i / w;
+        rays.pixels.push_back(uint32_t(size_t(y) * size_t(width) + size_t(x)));
+        rays.reach.push_back(std::min(in.tMax, reach[size_t(i)] * (1.0 + kReachSlack)));
+      }
   } else {
     for (int y = r.y0; y < r.y1; ++y)
       for (int x = r.x0; x < r.x1; ++x)
@@ -92,25 +87,46 @@ void castTilePvl(RayWalker& walker, const TileRect& r, int tileIndex, const Tile
   if (cast) *cast = std::move(rays.pixels);
 }
 
+namespace {
+
+// Embree's hits of the tile's rays, from the plane to each ray's reach, into scratch.hits.
+void traceTileRays(const EmbreeScene& embree, const TileRays& rays, const TileCastInput& in,
+                   TileScratch& scratch) {
+  const Camera& cam = *in.camera;
+  const uint32_t w = uint32_t(cam.width());
+  const size_t n = rays.pixels.size();
+  scratch.rays.resize(n);
+  scratch.hits.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    const int x = int(rays.pixels[k] % w), y = int(rays.pixels[k] / w);
+    scratch.rays[k] = {cam.position(), cam.pixelDirection(x + 0.5, y + 0.5), in.tMin,
+                       rays.reach[k]};
+  }
+  embree.intersect(scratch.rays, scratch.hits);
+}
+
+}  // namespace
+
+void castTileHits(const EmbreeScene& embree, HitLeafRecorder& recorder, const TileRect& r,
+                  int tileIndex, const TileCastInput& in, TileScratch& scratch, PvlPart& out,
+                  TileCastCounts& counts, std::vector<uint32_t>* cast) {
+  TileRays rays = tileRaysToCast(r, tileIndex, in, scratch, counts);
+  recorder.beginPart();
+  traceTileRays(embree, rays, in, scratch);
+  for (size_t k = 0; k < rays.pixels.size(); ++k)
+    recorder.record(scratch.rays[k].origin, scratch.rays[k].dir, scratch.hits[k], out);
+  if (cast) *cast = std::move(rays.pixels);
+}
+
 void castTileEmbree(const EmbreeScene& embree, const TileRect& r, int tileIndex,
                     const TileCastInput& in, TileScratch& scratch, Framebuffer& far,
                     TileCastCounts& counts, std::vector<uint32_t>* cast) {
   TileRays rays = tileRaysToCast(r, tileIndex, in, scratch, counts);
-  const std::vector<uint32_t>& pixels = rays.pixels;
-  if (!pixels.empty()) {
-    const Camera& cam = *in.camera;
-    const int w = cam.width();
-    std::vector<Ray> batch(pixels.size());
-    std::vector<RayHit> hits(pixels.size());
-    for (size_t k = 0; k < pixels.size(); ++k) {
-      const int x = int(pixels[k] % uint32_t(w)), y = int(pixels[k] / uint32_t(w));
-      batch[k] = {cam.position(), cam.pixelDirection(x + 0.5, y + 0.5), in.tMin, rays.reach[k]};
-    }
-    embree.intersect(batch, hits);
-    for (size_t k = 0; k < pixels.size(); ++k) {
-      far.depth[pixels[k]] = hits[k].hit() ? hits[k].t : kEmptyDepth;
-      far.id[pixels[k]] = hits[k].id;
-    }
+  traceTileRays(embree, rays, in, scratch);
+  for (size_t k = 0; k < rays.pixels.size(); ++k) {
+    const RayHit& h = scratch.hits[k];
+    far.depth[rays.pixels[k]] = h.hit() ? h.t : kEmptyDepth;
+    far.id[rays.pixels[k]] = h.id;
   }
   if (cast) *cast = std::move(rays.pixels);
 }

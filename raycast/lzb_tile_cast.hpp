@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "raycast/embree_scene.hpp"
+#include "raycast/lzb_hit_leaves.hpp"
 #include "raycast/lzb_oor.hpp"
 #include "raycast/lzb_ray_walk.hpp"
 #include "mpi/decomposition.hpp"
@@ -18,11 +19,11 @@ namespace lzb {
 struct TileCastCounts {
   uint64_t unfinished = 0;    // pixels of the tile the near pass left empty
   uint64_t cast = 0;          // rays cast (unfinished pixels, inside some polygon with OOR)
-  uint64_t polygonTests = 0;  // OOR point-in-polygon tests
+  uint64_t polygonRows = 0;   // OOR: rows of polygons intersected with the tile's pixel rows
   void add(const TileCastCounts& o) {
     unfinished += o.unfinished;
     cast += o.cast;
-    polygonTests += o.polygonTests;
+    polygonRows += o.polygonRows;
   }
 };
 
@@ -41,11 +42,13 @@ struct TileRays {
   std::vector<double> reach;
 };
 
-// Per-thread buffers of tileRaysToCast, reused from tile to tile.
+// Per-thread buffers of tileRaysToCast and the Embree casts, reused from tile to tile.
 struct TileScratch {
   std::vector<uint8_t> mask;
   std::vector<double> reach;
-  std::vector<uint32_t> marked;  // OOR: tile-local indices of the pixels to cast
+  std::vector<uint8_t> inside;   // OOR: 1 where a polygon holds the pixel centre
+  std::vector<Ray> rays;
+  std::vector<RayHit> hits;
 };
 
 // The rays of tile r: its unfinished pixels and, with OOR, only those inside a polygon binned
@@ -58,6 +61,12 @@ TileRays tileRaysToCast(const TileRect& r, int tileIndex, const TileCastInput& i
 void castTilePvl(RayWalker& walker, const TileRect& r, int tileIndex, const TileCastInput& in,
                  TileScratch& scratch, PvlPart& out, TileCastCounts& counts,
                  std::vector<uint32_t>* cast = nullptr);
+
+// PVL finding for one tile with Embree: each ray's hit recorded as the leaves around it
+// (lzb_hit_leaves.hpp). The pixels cast go to *cast when given.
+void castTileHits(const EmbreeScene& embree, HitLeafRecorder& recorder, const TileRect& r,
+                  int tileIndex, const TileCastInput& in, TileScratch& scratch, PvlPart& out,
+                  TileCastCounts& counts, std::vector<uint32_t>* cast = nullptr);
 
 // Naive LZB: classic ray casting (Embree packets) of the tile's unfinished pixels; hits go to
 // far (depth, id) at their pixels.

@@ -31,7 +31,14 @@ struct HybridParams {
   int splat = 1;             // d
   double fallbackPx = 0.0;   // sampled leaves' largest projected triangle; 0: d^2 / ln(pixels)
   bool dropBackfaces = true;
-  LzbOptions lzb;            // the local z-buffering stages (final stage, native z-buffers)
+  // The local z-buffering stages (final stage, native z-buffers), its rays by the octree walk:
+  // only the walk skips what the point pass draws (LeafFilter).
+  LzbOptions lzb = walkingLzb();
+  static LzbOptions walkingLzb() {
+    LzbOptions o;
+    o.farRays = FarRays::kWalk;
+    return o;
+  }
 
   // Throws InputError naming the option for out-of-range values.
   void validate() const;

@@ -70,7 +70,7 @@ TEST(HybridRenderer, SubPixelFieldIsSampledAndShowsVisibleTriangles) {
   const Scene* scene = field();
   if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
   HybridRenderer hybrid(*scene, testing::lzbRenderOptions(), HybridParams{});
-  LzbRenderer lzb(*scene, testing::lzbRenderOptions(), LzbOptions{});
+  LzbRenderer lzb(*scene, testing::lzbRenderOptions(), HybridParams::walkingLzb());
   const Camera cam = testing::pathFrame(*scene, 1, 4, 160, 120);
   FrameStats hs, ls;
   const Framebuffer image = testing::renderFrame(hybrid, cam, {}, &hs);
