@@ -11,22 +11,24 @@ set -euo pipefail
 lzb="$1" work="$2"
 rm -rf "$work" && mkdir -p "$work"
 
-# stage[:near z-buffer:PVL z-buffer]
-for run in naive lazy selective oor final final:gl:gl final:gl:native final:native:gl naive:gl; do
-  IFS=: read -r stage near render <<<"$run"
-  near="${near:-native}" render="${render:-native}" out="$work/${run//:/-}"
+# stage[:near z-buffer:PVL z-buffer[:far rays]]
+for run in naive lazy selective oor final final:gl:gl final:gl:native final:native:gl naive:gl \
+  selective:native:native:walk final:native:native:walk; do
+  IFS=: read -r stage near render rays <<<"$run"
+  near="${near:-native}" render="${render:-native}" rays="${rays:-embree}" out="$work/${run//:/-}"
   reference=zbuffer
   [ "$stage" != naive ] || reference=raycast
   "$lzb" render "builtin:city?blocks=4" --method lzb --lzb-stage "$stage" --near-render "$near" \
-    --pvl-render "$render" --reference "$reference" --frames 2 --width 192 --height 144 --threads 2 \
+    --pvl-render "$render" --lzb-rays "$rays" --reference "$reference" --frames 2 --width 192 --height 144 --threads 2 \
     --quiet --out "$out" >/dev/null
-  python3 - "$out/report.json" "$stage" "$near" "$render" <<'PY'
+  python3 - "$out/report.json" "$stage" "$near" "$render" "$rays" <<'PY'
 import json, sys
-report, stage, near, render = json.load(open(sys.argv[1])), *sys.argv[2:]
+report, stage, near, render, rays = json.load(open(sys.argv[1])), *sys.argv[2:]
 assert report["method_parameters"]["stage"] == stage, report["method_parameters"]
 assert report["method_parameters"]["near_render"] == near, report["method_parameters"]
 if stage != "naive":
     assert report["method_parameters"]["pvl_render"] == render, report["method_parameters"]
+    assert report["method_parameters"]["far_rays"] == rays, report["method_parameters"]
 for f in report["frames"]:
     a = f["accuracy"]
     assert a["correct_rate_covered"] >= 0.999 and a["exact_id_rate_covered"] >= 0.999, (stage, a)
@@ -37,10 +39,11 @@ for f in report["frames"]:
     for key in ("cull", "plane", "near", "unfinished", "shade"):
         assert key in s, (stage, key)
     if stage != "naive":
-        for key in ("octree_nodes_visited", "ray_triangle_tests", "pvl_size"):
-            assert key in c, (stage, key)
+        engine = "ray_triangle_tests" if rays == "walk" else "hit_placements_resolved"
+        for key in ("octree_nodes_visited", "rays_hit", engine, "pvl_size"):
+            assert key in c, (stage, rays, key)
         assert "pvl_find" in s and "pvl_render" in s, stage
-print("ok:", stage, near, render, [(round(f["accuracy"]["correct_rate_covered"], 5),
+print("ok:", stage, near, render, rays, [(round(f["accuracy"]["correct_rate_covered"], 5),
                                     round(f["accuracy"]["exact_id_rate_covered"], 5)) for f in report["frames"]])
 PY
 done
@@ -69,3 +72,4 @@ bad "--plane-grid" --plane-grid 0
 bad "--lzb-walk" --lzb-walk sideways
 bad "--pvl-render" --pvl-render vulkan
 bad "--near-render" --near-render opengl
+bad "--lzb-rays" --lzb-rays gpu

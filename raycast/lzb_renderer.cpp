@@ -215,12 +215,11 @@ void LzbRenderer::castFarRays(Frame& f) {
   if (!lzb_.usesPvl()) {
     castNaiveRays(f, input, tilePixels);
   } else {
-    // The walk alone knows what a composing method draws elsewhere (its LeafFilter).
-    if (f.leafFilter && !lzb_.usesWalk())
-      throw std::logic_error("lzb: a leaf filter needs the octree walk (--lzb-rays walk)");
+    // The walk alone skips what a composing method draws elsewhere (its LeafFilter).
+    f.walked = lzb_.usesWalk() || f.leafFilter;
     if (parts_.size() < size_t(count)) parts_.resize(size_t(count));
     for (long k = 0; k < count; ++k) parts_[size_t(k)].clear();
-    if (lzb_.usesWalk())
+    if (f.walked)
       findPvlByWalk(f, input, tilePixels);
     else
       findPvlByEmbree(f, input, tilePixels);
@@ -374,7 +373,7 @@ void LzbRenderer::countFrame(const Frame& f, FrameStats& stats) const {
   // This rank's share.
   stats.addCount("rays_cast", double(f.tileCounts.cast));
   if (f.oor) stats.addCount("oor_polygon_rows", double(f.tileCounts.polygonRows));
-  if (lzb_.usesWalk()) {
+  if (f.walked) {
     const RayWalkCounts& w = last_.walk;
     stats.addCount("octree_nodes_visited", double(w.nodesVisited));
     stats.addCount("octree_leaves_visited", double(w.leavesVisited));

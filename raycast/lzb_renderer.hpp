@@ -64,8 +64,9 @@ class LzbRenderer : public Renderer {
     bool farApart = false;     // farPass_ holds far-scene pixels still to composite with fb
     bool nativePvl = false;    // the native z-buffer drew the PVL
     // Set by a composing method (hybrid): what another pass draws, which the cull leaves out
-    // (whole placed nodes) and the walk skips.
+    // (whole placed nodes) and the walk skips (so the far rays walk whatever --lzb-rays says).
     const LeafFilter* leafFilter = nullptr;
+    bool walked = false;  // the far rays were the octree walk's (else Embree's)
   };
   // 1. Hierarchical view-frustum culling of the octrees.
   void cull(Frame& f);

@@ -31,14 +31,9 @@ struct HybridParams {
   int splat = 1;             // d
   double fallbackPx = 0.0;   // sampled leaves' largest projected triangle; 0: d^2 / ln(pixels)
   bool dropBackfaces = true;
-  // The local z-buffering stages (final stage, native z-buffers), its rays by the octree walk:
-  // only the walk skips what the point pass draws (LeafFilter).
-  LzbOptions lzb = walkingLzb();
-  static LzbOptions walkingLzb() {
-    LzbOptions o;
-    o.farRays = FarRays::kWalk;
-    return o;
-  }
+  // The local z-buffering stages (final stage, native z-buffers); its far rays walk the octrees
+  // in frames where the point pass takes leaves (only the walk skips them), else are Embree's.
+  LzbOptions lzb;
 
   // Throws InputError naming the option for out-of-range values.
   void validate() const;
