@@ -375,7 +375,20 @@ INSTANTIATE_TEST_SUITE_P(
                 "render builtin:sphereflake --method rzb --fallback-render opengl",
                 "--fallback-render"},
         BadCase{"subsamples_too_tall", "render builtin:sphereflake --subsamples --height 4100",
-                "--subsamples"}),
+                "--subsamples"},
+        BadCase{"surfel_grids", "render builtin:sphereflake --method surfels --surfel-grids 64,96",
+                "--surfel-grids"},
+        BadCase{"surfel_grids_low", "render builtin:sphereflake --method surfels --surfel-quality low",
+                "--surfel-grids"},
+        BadCase{"surfel_sprite", "render builtin:sphereflake --method surfels --splat 0", "--splat"},
+        BadCase{"surfel_cell", "render builtin:sphereflake --method surfels --surfel-cell -1",
+                "--surfel-cell"},
+        BadCase{"surfel_budget", "render builtin:sphereflake --method surfels --budget-ms -5",
+                "--budget-ms"},
+        BadCase{"surfel_rate", "render builtin:sphereflake --method surfels --budget-rate fast",
+                "--budget-rate"},
+        BadCase{"surfelize", "render builtin:sphereflake --method surfels --surfelize voxels",
+                "--surfelize"}),
     [](const auto& info) { return info.param.name; });
 
 }  // namespace

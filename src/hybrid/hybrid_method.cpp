@@ -20,12 +20,13 @@ class HybridMethod : public Method {
     addSharedOption(c, "--oversample", oversample_,
                     "rzb, hybrid: scales the ln(pixels) samples per pixel of projected area");
     addSharedOption(c, "--splat", params_.splat,
-                    "rzb, hybrid: splat size d (d x d pixels; d^2 fewer samples)");
+                    "rzb, hybrid: splat size d (d x d pixels; d^2 fewer samples); surfels: the "
+                    "largest sprite");
     addSharedOption(c, "--fallback", fallback_,
                     "rzb, hybrid: boxes (hybrid: octree leaves) whose triangles project above this "
                     "many pixels are drawn exactly (rzb: z-buffer; hybrid: lazy ray casting + "
                     "PVL): auto (d^2 / ln pixels), off (rzb only), or a number");
-    addSharedOption(c, "--backfaces", backfaces_, "rzb, hybrid: drop | keep samples on back faces");
+    addSharedOption(c, "--backfaces", backfaces_, "rzb, hybrid, surfels: drop | keep samples (surfels) on back faces");
     addSharedOption(c, "--plane", plane_,
                     "lzb, hybrid: partition plane: auto (coarse ray casting, mean depth), cost "
                     "(coarse ray casting, cost model) or a fraction F in (0, 1) of the frustum "

@@ -68,7 +68,8 @@ class RzbMethod : public Method {
     addSharedOption(app, "--oversample", oversample_,
                     "rzb, hybrid: scales the ln(pixels) samples per pixel of projected area");
     addSharedOption(app, "--splat", splat_,
-                    "rzb, hybrid: splat size d (d x d pixels; d^2 fewer samples)");
+                    "rzb, hybrid: splat size d (d x d pixels; d^2 fewer samples); surfels: the "
+                    "largest sprite");
     addSharedOption(app, "--fallback", fallback_,
                     "rzb, hybrid: boxes (hybrid: octree leaves) whose triangles project above this "
                     "many pixels are drawn exactly (rzb: z-buffer; hybrid: lazy ray casting + "
@@ -84,7 +85,7 @@ class RzbMethod : public Method {
     app.add_option("--area-ratio", areaRatio_, "rzb: area class width, 2..64")->capture_default_str();
     app.add_option("--cache-mb", cacheMb_, "rzb: sample cache budget in MiB (0: no cache)")
         ->capture_default_str();
-    addSharedOption(app, "--backfaces", backfaces_, "rzb, hybrid: drop | keep samples on back faces");
+    addSharedOption(app, "--backfaces", backfaces_, "rzb, hybrid, surfels: drop | keep samples (surfels) on back faces");
   }
   void validate() override {
     params_ = rzb::parseRzbOptions(eps_, oversample_, splat_, fallback_, reconstruct_, areaRatio_,

@@ -8,7 +8,8 @@
 // Depth is THE convention of src/core/camera.hpp; points nearer than the near plane or beyond the
 // far plane are dropped, as the z-buffer clips them. A point at pixel position (px, py) lands in
 // pixel (floor(px), floor(py)); a d x d splat covers the d x d pixels whose centres are nearest to
-// it. Colour is not in the key: it is shaded afterwards from the resolved ID.
+// it, or with `disc` only those of them whose centres lie within d / 2 of it (the surfels' round
+// sprites). Colour is not in the key: it is shaded afterwards from the resolved ID.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -23,7 +24,8 @@ struct SplatSetup {
   int width = 0, height = 0;
   double pixelScale = 1.0;  // camera.pixelsPerUnitAt(1)
   double nearPlane = 0.1, farPlane = 1e30;
-  int splat = 1;  // d: splats of d x d pixels
+  int splat = 1;     // d: splats of d x d pixels
+  bool disc = false;  // only the pixel centres within d / 2 of the point
   static SplatSetup from(const Camera& camera, int splat);
 };
 
@@ -114,8 +116,17 @@ class PointSplatter {
     if (!(fx > -d && fx < s_.width && fy > -d && fy < s_.height)) return;
     const int x0 = std::max(int(fx), 0), x1 = std::min(int(fx) + s_.splat, s_.width);
     const int y0 = std::max(int(fy), 0), y1 = std::min(int(fy) + s_.splat, s_.height);
-    for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) write(size_t(y) * size_t(s_.width) + size_t(x), q.z, q.id);
+    if (s_.disc) {
+      const double r2 = 0.25 * d * d;
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+          const double ex = x + 0.5 - px, ey = y + 0.5 - py;
+          if (ex * ex + ey * ey <= r2) write(size_t(y) * size_t(s_.width) + size_t(x), q.z, q.id);
+        }
+    } else {
+      for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) write(size_t(y) * size_t(s_.width) + size_t(x), q.z, q.id);
+    }
     ++splatted_;
   }
 

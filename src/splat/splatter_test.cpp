@@ -62,6 +62,25 @@ TEST(Splatter, SplatCoversTheDByDPixelsNearestToThePoint) {
   EXPECT_EQ(corner.id[corner.index(0, 0)], 5u);
 }
 
+TEST(Splatter, DiscCoversOnlyTheCentresWithinHalfTheSize) {
+  // px = 5.2, py = 3.4, d = 4: the square covers x 3-6, y 1-4 (16 pixels); the disc of radius 2
+  // keeps the centres within 2 of the point, e.g. (5, 3) at 0.36 but not (3, 1) at 2.9.
+  SplatSetup s = setup(4);
+  s.disc = true;
+  const Framebuffer fb = splat<false, false>(s, {{0.6, -0.2, 2.0, 9}});
+  int expected = 0;
+  for (int y = 1; y <= 4; ++y)
+    for (int x = 3; x <= 6; ++x) {
+      const double ex = x + 0.5 - 5.2, ey = y + 0.5 - 3.4;
+      const bool in = ex * ex + ey * ey <= 4.0;
+      expected += in;
+      EXPECT_EQ(fb.id[fb.index(x, y)], in ? 9u : kNoId) << x << "," << y;
+    }
+  EXPECT_EQ(fb.coveredCount(), size_t(expected));
+  EXPECT_LT(expected, 16);
+  EXPECT_GE(expected, 9);
+}
+
 TEST(Splatter, NearestPointWinsWhateverTheOrderAndKeyWidth) {
   std::mt19937 rng(3);
   std::vector<std::array<double, 4>> points;

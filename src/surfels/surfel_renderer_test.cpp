@@ -1,0 +1,186 @@
+// The surfel renderer: no holes on a closed mesh at the level it chooses (and holes when told to
+// use coarser cells), accuracy on a scanned mesh at the default settings, the switch between
+// polygons and surfels, instancing, and the time budget's shuffled prefix, the same on any
+// threads and ranks.
+#include "src/surfels/surfel_renderer.hpp"
+
+#include <gtest/gtest.h>
+
+#include "src/surfels/surfel_test_util.hpp"
+
+namespace lzb::surfels {
+namespace {
+
+using namespace testing;
+
+SurfelParams defaults() { return parseSurfelOptions({}); }
+
+TEST(SurfelRenderer, NoHolesOnAClosedMeshAtTheChosenLevel) {
+  const Scene scene = spheres({{0.0, 0.0, 0.0}});
+  const Camera cam = lookAt({0.4, 0.7, 4.5}, {0, 0, 0}, 160, 120);
+  const Framebuffer truth = exact(scene, cam);
+  for (int sprite : {1, 2, 4})
+    for (bool disc : {false, true})
+      for (bool drop : {true, false})
+        for (Surfelizer how : {Surfelizer::kRaster, Surfelizer::kShots}) {
+          SurfelParams p = defaults();
+          p.sprite = sprite;
+          p.disc = disc;
+          p.dropBackfaces = drop;
+          p.surfelize = how;
+          SurfelRenderer r(scene, options(), p);
+          FrameStats stats;
+          const Framebuffer image = render(r, cam, &stats);
+          const std::string what = "sprite " + std::to_string(sprite) + (disc ? " disc" : " square") +
+                                   (drop ? " drop" : " keep") + (how == Surfelizer::kRaster ? " raster" : " shots");
+          ASSERT_EQ(stats.shared["placements_surfels"], 1.0) << what;  // drawn as surfels
+          EXPECT_EQ(holes(image, truth), 0u) << what << ", " << stats.shared.dump();
+        }
+}
+
+TEST(SurfelRenderer, CoarserCellsThanTheSpriteCoversOpenHoles) {
+  // The control of the test above: cells four times the hole-free size must leave holes.
+  const Scene scene = spheres({{0.0, 0.0, 0.0}});
+  const Camera cam = lookAt({0.4, 0.7, 4.5}, {0, 0, 0}, 160, 120);
+  SurfelParams p = defaults();
+  p.cellFraction = 2.0;
+  SurfelRenderer r(scene, options(), p);
+  FrameStats stats;
+  const Framebuffer image = render(r, cam, &stats);
+  ASSERT_EQ(stats.shared["placements_surfels"], 1.0);
+  EXPECT_GT(holes(image, exact(scene, cam)), 50u);
+}
+
+TEST(SurfelRenderer, ShowsVisibleTrianglesOnAScannedMeshAtTheDefaults) {
+  const std::string mesh = lzb::testing::scannedMesh("armadillo.off");
+  if (mesh.empty()) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
+  const Scene scene = loadScene(mesh, true);
+  for (int width : {160, 320}) {
+    const Camera cam = lzb::testing::pathFrame(scene, 1, 4, width, width * 3 / 4);
+    SurfelRenderer r(scene, options(), defaults());
+    FrameStats stats;
+    const Framebuffer image = render(r, cam, &stats);
+    ASSERT_EQ(stats.shared["placements_surfels"], 1.0) << "width " << width;
+    const Accuracy a = accuracy(scene, cam, image);
+    EXPECT_GE(a.correctRateCovered, 0.90) << "width " << width << ": " << toJson(a).dump();
+    EXPECT_EQ(a.missingPixels, 0u) << "width " << width;
+  }
+}
+
+TEST(SurfelRenderer, NearObjectsStayPolygonsAndAreExact) {
+  // One sphere just in front of the camera, one far away.
+  const Scene scene = spheres({{0.0, 0.0, 0.0}, {6.0, 0.0, -60.0}});
+  const Camera cam = lookAt({0.0, 0.0, 2.2}, {0.3, 0.0, -1.0}, 160, 120);
+  SurfelRenderer r(scene, options(), defaults());
+  FrameStats stats;
+  const Framebuffer image = render(r, cam, &stats);
+  EXPECT_EQ(stats.shared["placements_polygons"], 1.0);
+  EXPECT_EQ(stats.shared["placements_surfels"], 1.0);
+  EXPECT_EQ(stats.counts["polygon_triangles"], double(scene.nodes[1].mesh.size()));
+  // The near sphere (IDs below its triangle count) is the exact image wherever it is visible.
+  const Framebuffer truth = exact(scene, cam);
+  const uint64_t n = scene.nodes[1].mesh.size();
+  size_t near = 0, same = 0;
+  for (size_t i = 0; i < truth.size(); ++i)
+    if (truth.covered(i) && truth.id[i] < n) {
+      ++near;
+      same += image.id[i] == truth.id[i];
+    }
+  ASSERT_GT(near, 3000u);
+  EXPECT_GE(double(same), 0.999 * double(near));
+}
+
+TEST(SurfelRenderer, ChoosesTheCoarsestHoleFreeLevelAndTheSmallestSprite) {
+  SurfelParams p = defaults();  // grids 1..512, sprite 1, cells at most half the sprite
+  EXPECT_EQ(chooseLevel(100.0, p).level, 8);  // 100 / 256 <= 0.5 < 100 / 128
+  EXPECT_EQ(chooseLevel(100.0, p).sprite, 1);
+  EXPECT_EQ(chooseLevel(0.3, p).level, 0);  // a sub-pixel object: one cell
+  EXPECT_EQ(chooseLevel(300.0, p).level, kPolygons);  // 300 / 512 > 0.5: polygons
+  EXPECT_EQ(chooseLevel(INFINITY, p).level, kPolygons);  // reaches the near plane
+  p.sprite = 4;
+  EXPECT_EQ(chooseLevel(300.0, p).level, 8);  // 300 / 128 = 2.3 > 0.5 x 4; 300 / 256 fits
+  EXPECT_EQ(p.grids[size_t(chooseLevel(300.0, p).level)], 256);
+  EXPECT_EQ(chooseLevel(300.0, p).sprite, 3);  // 1.17 <= 0.5 d from d = 3
+  p.disc = true;  // a disc of d covers d / sqrt 2
+  EXPECT_EQ(chooseLevel(300.0, p).sprite, 4);
+  p.grids = {64, 128};
+  EXPECT_EQ(chooseLevel(0.3, p).level, 0);
+  EXPECT_EQ(chooseLevel(1000.0, p).level, kPolygons);
+}
+
+TEST(SurfelRenderer, InstancesShareOneSurfelSetPerObject) {
+  const Scene scene = loadScene("builtin:sphereflake?depth=3", true);
+  const Camera cam = lzb::testing::pathFrame(scene, 0, 4, 256, 192);
+  SurfelRenderer r(scene, options(), defaults());
+  FrameStats stats;
+  render(r, cam, &stats);
+  EXPECT_EQ(stats.shared["objects_surfels"], 1.0);  // the one sphere node
+  EXPECT_GT(stats.shared["placements_surfels"].get<double>(), 500.0);
+  // One level per grid in use, whatever the number of placements.
+  EXPECT_EQ(stats.shared["levels_cached"].get<double>(), double(stats.shared["grid_placements"].size()));
+  EXPECT_EQ(stats.shared["collector_bytes_per_surfel"], 6.0);
+  EXPECT_EQ(stats.shared["id_bytes_per_surfel"], 1.0);  // 200 triangles
+  // The cache: a second frame builds nothing.
+  render(r, cam, &stats);
+  EXPECT_EQ(stats.shared["levels_built"], 0.0);
+}
+
+// The budget as a count: one fraction of every collector, its shuffled prefix.
+TEST(SurfelRenderer, BudgetDrawsTheShuffledPrefixOnAnyThreadsAndRanks) {
+  const Scene scene = loadScene("builtin:sphereflake?depth=2", true);
+  const Camera cam = lzb::testing::pathFrame(scene, 0, 4, 200, 150);
+  SurfelParams full = defaults();
+  full.sprite = 2;
+  SurfelRenderer all(scene, options(), full);
+  FrameStats fs;
+  const Framebuffer whole = render(all, cam, &fs);
+  const double selected = fs.shared["surfels_selected"].get<double>();
+  ASSERT_GT(selected, 10000.0);
+
+  SurfelParams p = full;
+  p.budgetMs = 2.0;
+  p.budgetRate = selected / 8.0 / p.budgetMs;  // buys an eighth
+  SurfelRenderer one(scene, options(1), p), two(scene, options(2), p);
+  FrameStats s1, s2;
+  const Framebuffer a = render(one, cam, &s1), b = render(two, cam, &s2);
+  EXPECT_EQ(a.id, b.id);
+  EXPECT_EQ(a.depth, b.depth);
+  EXPECT_NEAR(s1.shared["budget_fraction"].get<double>(), 0.125, 0.01);
+  EXPECT_NEAR(s1.counts["surfels_drawn"].get<double>(), selected / 8.0, 0.01 * selected);
+  for (int size : {2, 3}) {
+    Framebuffer composite(cam.width(), cam.height());
+    double drawn = 0.0;
+    for (int rank = 0; rank < size; ++rank) {
+      SurfelRenderer part(scene, options(1), p);
+      FrameStats s;
+      compositeNearer(composite, render(part, cam, &s, {rank, size}));
+      drawn += s.counts["surfels_drawn"].get<double>();
+    }
+    EXPECT_EQ(composite.id, a.id) << size << " ranks";
+    EXPECT_EQ(composite.depth, a.depth) << size << " ranks";
+    EXPECT_EQ(drawn, s1.counts["surfels_drawn"].get<double>());
+  }
+  // The prefix is spread over the whole object: it reaches the full image's extent.
+  const auto extent = [](const Framebuffer& fb) {
+    int x0 = fb.width, x1 = -1, y0 = fb.height, y1 = -1;
+    for (int y = 0; y < fb.height; ++y)
+      for (int x = 0; x < fb.width; ++x)
+        if (fb.covered(fb.index(x, y))) x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+    return glm::ivec2(x1 - x0, y1 - y0);
+  };
+  EXPECT_GE(extent(a).x, 0.9 * extent(whole).x);
+  EXPECT_GE(extent(a).y, 0.9 * extent(whole).y);
+  EXPECT_LT(a.coveredCount(), whole.coveredCount());
+}
+
+TEST(SurfelRenderer, BudgetRateIsMeasuredAtSetUpWhenNotGiven) {
+  const Scene scene = spheres({{0.0, 0.0, 0.0}});
+  SurfelParams p = defaults();
+  p.budgetMs = 5.0;
+  SurfelRenderer r(scene, options(), p);
+  EXPECT_GT(r.budgetRate(), 100.0);  // surfels per ms: any machine splats more than 1e5 per second
+  EXPECT_GT(r.setupStats().shared["budget_rate_measured_per_ms"].get<double>(), 100.0);
+}
+
+}  // namespace
+}  // namespace lzb::surfels
