@@ -25,7 +25,8 @@ class SurfelMethod : public Method {
         ->capture_default_str();
     c.add_option("--surfel-grids", t_.grids,
                  "surfels: the levels of detail, cells per axis: ascending powers of two up to the "
-                 "collector's lattice (256 low, 1024 high)")
+                 "collector's lattice (256 low, 1024 high); auto: 1, 2, 4, ... up to half the "
+                 "lattice (128 low, 512 high)")
         ->capture_default_str();
     addSharedOption(c, "--splat", t_.splat,
                     "rzb, hybrid: splat size d (d x d pixels; d^2 fewer samples); surfels: the "

@@ -29,6 +29,9 @@ TEST(SurfelOptions, DefaultsAreTheDocumentedOnes) {
   EXPECT_TRUE(p.dropBackfaces);
   EXPECT_EQ(p.budgetMs, 0.0);
   EXPECT_EQ(p.toJson()["budget_rate"], "auto");
+  SurfelOptionText low;
+  low.quality = "low";  // auto grids stop at half the low-quality lattice of 256
+  EXPECT_EQ(parseSurfelOptions(low).grids, (std::vector<int>{1, 2, 4, 8, 16, 32, 64, 128}));
 }
 
 TEST(SurfelOptions, BadValuesNameTheirOption) {

@@ -9,9 +9,17 @@ namespace lzb::surfels {
 
 namespace {
 
+// 1, 2, 4, ... up to half the lattice: positions keep a bit inside the finest cell.
+std::vector<int> autoGrids(int lattice) {
+  std::vector<int> grids;
+  for (int g = 1; g <= lattice / 2; g *= 2) grids.push_back(g);
+  return grids;
+}
+
 std::vector<int> parseGrids(const std::string& text, Quality quality) {
   const int lattice = int(CollectorLayout::of(quality).lattice());
-  const std::string expected = "a comma-separated ascending list of powers of two in [1, " +
+  if (text == "auto") return autoGrids(lattice);
+  const std::string expected = "auto or a comma-separated ascending list of powers of two in [1, " +
                                std::to_string(lattice) + "] (the " +
                                (quality == Quality::kLow ? "low" : "high") +
                                "-quality collector's lattice, --surfel-quality)";

@@ -14,7 +14,7 @@ namespace lzb::surfels {
 struct SurfelParams {
   Surfelizer surfelize = Surfelizer::kRaster;  // --surfelize raster | shots
   Quality quality = Quality::kHigh;            // --surfel-quality low | high
-  std::vector<int> grids = {1, 2, 4, 8, 16, 32, 64, 128, 256, 512};  // --surfel-grids, ascending
+  std::vector<int> grids = {1, 2, 4, 8, 16, 32, 64, 128, 256, 512};  // --surfel-grids (auto)
   int sprite = 1;                              // --splat: the largest sprite, d x d pixels
   bool disc = false;                           // --sprite-shape square | disc
   double cellFraction = 0.5;                   // --surfel-cell
@@ -34,7 +34,7 @@ struct SurfelParams {
 
 // The option strings as the command line gives them.
 struct SurfelOptionText {
-  std::string surfelize = "raster", quality = "high", grids = "1,2,4,8,16,32,64,128,256,512",
+  std::string surfelize = "raster", quality = "high", grids = "auto",
               shape = "square", collisions = "split", backfaces = "drop", budgetRate = "auto",
               build = "lazy";
   int splat = 1;

@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "src/surfels/surfel_test_util.hpp"
 
 namespace lzb::surfels {
@@ -42,12 +44,16 @@ TEST(SurfelRenderer, CoarserCellsThanTheSpriteCoversOpenHoles) {
   // The control of the test above: cells four times the hole-free size must leave holes.
   const Scene scene = spheres({{0.0, 0.0, 0.0}});
   const Camera cam = lookAt({0.4, 0.7, 4.5}, {0, 0, 0}, 160, 120);
+  // The rule is a worst case (the box's nearest corner, the cube's whole extent, grids in powers
+  // of two): at 2.0 it picks 128^3, whose cells project to 0.63 px at the sphere's front (no
+  // holes); 4.0 picks 64^3, 1.27 px cells against 1-pixel sprites.
   SurfelParams p = defaults();
-  p.cellFraction = 2.0;
+  p.cellFraction = 4.0;
   SurfelRenderer r(scene, options(), p);
   FrameStats stats;
   const Framebuffer image = render(r, cam, &stats);
   ASSERT_EQ(stats.shared["placements_surfels"], 1.0);
+  ASSERT_EQ(stats.shared["grid_placements"].value("64", 0.0), 1.0) << stats.shared.dump();
   EXPECT_GT(holes(image, exact(scene, cam)), 50u);
 }
 
@@ -55,16 +61,25 @@ TEST(SurfelRenderer, ShowsVisibleTrianglesOnAScannedMeshAtTheDefaults) {
   const std::string mesh = lzb::testing::scannedMesh("armadillo.off");
   if (mesh.empty()) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
   const Scene scene = loadScene(mesh, true);
-  for (int width : {160, 320}) {
+  // At 320 px the mesh's cube projects over 256 px, so even 512^3 cells exceed half a 1-pixel
+  // sprite: the defaults draw it as polygons (below); 80 and 160 px draw surfels of two levels.
+  for (int width : {80, 160}) {
     const Camera cam = lzb::testing::pathFrame(scene, 1, 4, width, width * 3 / 4);
     SurfelRenderer r(scene, options(), defaults());
     FrameStats stats;
     const Framebuffer image = render(r, cam, &stats);
     ASSERT_EQ(stats.shared["placements_surfels"], 1.0) << "width " << width;
+    std::printf("width %d: %s\n", width, stats.shared["grid_placements"].dump().c_str());
     const Accuracy a = accuracy(scene, cam, image);
     EXPECT_GE(a.correctRateCovered, 0.90) << "width " << width << ": " << toJson(a).dump();
     EXPECT_EQ(a.missingPixels, 0u) << "width " << width;
   }
+  const Camera near = lzb::testing::pathFrame(scene, 1, 4, 320, 240);
+  SurfelRenderer r(scene, options(), defaults());
+  FrameStats stats;
+  const Framebuffer image = render(r, near, &stats);
+  EXPECT_EQ(stats.shared["placements_polygons"], 1.0);
+  EXPECT_GE(accuracy(scene, near, image).correctRateCovered, 0.999);  // the native z-buffer
 }
 
 TEST(SurfelRenderer, NearObjectsStayPolygonsAndAreExact) {

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <map>
 #include <random>
 #include <set>
@@ -120,18 +122,45 @@ TEST(Surfelize, CollisionsSplitWhenNormalsDifferAndAverageOtherwise) {
     }
 }
 
+// Which cells shots must find: a plane at distance r from a cell's centre meets the cell's
+// inscribed ball (radius 1/2) in a disc of radius sqrt(1/4 - r^2); seen from the nearest of the 26
+// directions (at most acos(1 / |(1, sqrt 2 - 1, sqrt 3 - sqrt 2)|) = 27.6 degrees off the normal)
+// it stays an ellipse of minor radius >= 0.886 sqrt(1/4 - r^2), which holds a pixel centre of the
+// 0.5-cell lattice once that is >= 0.5 / sqrt 2: so r^2 <= 0.0909. A cell the surface only grazes
+// (larger r) may be missed, as two pixels a cell cannot sample every sliver.
 TEST(Surfelize, ShotsFindTheSurfaceCellsOfAConvexObject) {
   const Mesh sphere = uvSphere(32, 16);
   const Domain d = Domain::around(sphere);
+  const double cosWorst = 1.0 / glm::length(glm::dvec3(1.0, std::sqrt(2.0) - 1.0, std::sqrt(3.0) - std::sqrt(2.0)));
+  const double r2Max = 0.25 - std::pow(0.5 / std::sqrt(2.0) / cosWorst, 2.0);
+  EXPECT_NEAR(r2Max, 0.0909, 1e-4);
   for (int grid : {16, 64}) {
-    std::set<uint64_t> raster, shots;
-    for (const Candidate& c : rasterCandidates(sphere, d, grid, 2)) raster.insert(c.cell);
+    std::map<uint64_t, float> raster;  // cell -> the surface's nearest approach to its centre
+    for (const Candidate& c : rasterCandidates(sphere, d, grid, 2)) {
+      auto [it, fresh] = raster.emplace(c.cell, c.dist2);
+      if (!fresh) it->second = std::min(it->second, c.dist2);
+    }
+    std::set<uint64_t> shots;
     for (const Candidate& c : shotCandidates(sphere, d, grid, 2)) shots.insert(c.cell);
-    size_t inRaster = 0;
+    size_t inRaster = 0, central = 0, centralShot = 0;
     for (uint64_t cell : shots) inRaster += raster.count(cell);
     EXPECT_EQ(inRaster, shots.size()) << "grid " << grid << ": shots found cells off the surface";
-    // Raster also keeps cells the surface barely touches, which shots two pixels a cell can miss.
-    EXPECT_GE(double(shots.size()), 0.9 * double(raster.size())) << "grid " << grid;
+    for (const auto& [cell, r2] : raster)
+      if (r2 <= r2Max) {
+        ++central;
+        centralShot += shots.count(cell);
+      }
+    EXPECT_EQ(centralShot, central) << "grid " << grid;
+    // Not vacuous: the centres within r of the surface fill a shell of volume about 2 r area.
+    double area = 0.0;
+    for (uint32_t t = 0; t < sphere.size(); ++t) {
+      const glm::dvec3 a = toGrid(sphere, t, 0, d, grid), b = toGrid(sphere, t, 1, d, grid),
+                       c = toGrid(sphere, t, 2, d, grid);
+      area += 0.5 * glm::length(glm::cross(b - a, c - a));
+    }
+    EXPECT_GT(double(central), 0.5 * 2.0 * std::sqrt(r2Max) * area) << "grid " << grid;
+    std::printf("grid %d: raster %zu cells, shots %zu, crossed within r^2 <= %.4f: %zu\n", grid,
+                raster.size(), shots.size(), r2Max, central);
   }
 }
 
