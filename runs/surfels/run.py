@@ -145,7 +145,7 @@ unset logscale y
 set ylabel 'correct pixels, covered (%)'
 plot {lines(3)}
 set logscale y
-set ylabel 'set-up: surfelization (s, log)'
+set ylabel 'set-up (s, log; surfels: surfelization)'
 plot {lines(4)}
 unset multiplot
 """)
