@@ -47,7 +47,8 @@ class SurfelMethod : public Method {
         ->capture_default_str();
     c.add_option("--budget-rate", t_.budgetRate,
                  "surfels: surfels per ms the budget converts with: auto (measured at set-up: the "
-                 "image then depends on this run's timing) or a rate (the same image anywhere)")
+                 "image then depends on this run's timing; one rank only) or a rate (the same "
+                 "image anywhere)")
         ->capture_default_str();
     c.add_option("--surfel-build", t_.build,
                  "surfels: lazy (a level is built when a frame first needs it, then cached) | setup "

@@ -195,6 +195,10 @@ void SurfelRenderer::render(const Camera& camera, int frame, const WorkShare& sh
                             Framebuffer& fb, FrameStats& stats) {
   if (fb.width != camera.width() || fb.height != camera.height())
     throw std::invalid_argument("surfels: framebuffer and camera sizes differ");
+  // A measured rate is this rank's own: ranks that disagree on the budget would deal different
+  // surfel runs, drawing some twice and leaving others out of the prefix.
+  require(!(params_.budgetMs > 0.0 && params_.budgetRate == 0.0 && share.size > 1), "--budget-rate",
+          "give a rate (surfels per ms) to budget on several ranks: 'auto' measures each rank's own");
   Frame f;
   f.camera = &camera;
   f.share = share;

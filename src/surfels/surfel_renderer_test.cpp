@@ -8,6 +8,7 @@
 
 #include <cstdio>
 
+#include "src/core/error.hpp"
 #include "src/surfels/surfel_test_util.hpp"
 
 namespace lzb::surfels {
@@ -195,6 +196,10 @@ TEST(SurfelRenderer, BudgetRateIsMeasuredAtSetUpWhenNotGiven) {
   SurfelRenderer r(scene, options(), p);
   EXPECT_GT(r.budgetRate(), 100.0);  // surfels per ms: any machine splats more than 1e5 per second
   EXPECT_GT(r.setupStats().shared["budget_rate_measured_per_ms"].get<double>(), 100.0);
+  // Each rank would measure its own rate: several ranks need a given one.
+  const Camera cam = lookAt({0.0, 0.0, 4.5}, {0, 0, 0}, 64, 48);
+  EXPECT_THROW(render(r, cam, nullptr, {0, 2}), InputError);
+  EXPECT_NO_THROW(render(r, cam, nullptr, {0, 1}));
 }
 
 }  // namespace
