@@ -53,7 +53,9 @@ namespace {
 uint32_t restBits(uint32_t c, int shift) {
   return (c & ((1u << shift) - 1)) | (c >> (shift + 4)) << shift;
 }
-uint32_t keyBits4(uint32_t c, int shift) { return c >> shift & 15u; }
+uint32_t keyBits4(uint32_t c, int shift) {
+  return c >> shift & 15u;
+}
 uint32_t join(uint32_t rest, uint32_t key4, int shift) {
   return (rest & ((1u << shift) - 1)) | key4 << shift | (rest >> shift) << (shift + 4);
 }
@@ -93,12 +95,16 @@ Surfel SurfelCollector::unpack(const CollectorLayout& l, int shift, uint32_t key
 
 SurfelCollector::SurfelCollector(Quality quality, int shift, std::span<const Surfel> surfels,
                                  std::span<const uint32_t> triangles)
-    : quality_(quality), layout_(CollectorLayout::of(quality)), shift_(shift), size_(surfels.size()) {
+    : quality_(quality),
+      layout_(CollectorLayout::of(quality)),
+      shift_(shift),
+      size_(surfels.size()) {
   if (shift < 0 || shift > layout_.positionBits - 4)
     throw std::invalid_argument("SurfelCollector: shift out of range");
   if (triangles.size() != surfels.size())
     throw std::invalid_argument("SurfelCollector: one triangle per surfel");
-  if (size_ >= (uint64_t(1) << 32)) throw std::invalid_argument("SurfelCollector: too many surfels");
+  if (size_ >= (uint64_t(1) << 32))
+    throw std::invalid_argument("SurfelCollector: too many surfels");
   std::vector<std::tuple<uint32_t, uint64_t, uint32_t>> packed(size_);
   for (size_t i = 0; i < size_; ++i) {
     uint32_t key;
@@ -110,16 +116,22 @@ SurfelCollector::SurfelCollector(Quality quality, int shift, std::span<const Sur
   starts_.assign(keys() + 1, 0);
   for (const auto& p : packed) ++starts_[std::get<0>(p) + 1];
   std::partial_sum(starts_.begin(), starts_.end(), starts_.begin());
-  const uint32_t maxTriangle = triangles.empty() ? 0 : *std::max_element(triangles.begin(), triangles.end());
+  const uint32_t maxTriangle =
+      triangles.empty() ? 0 : *std::max_element(triangles.begin(), triangles.end());
   triangleBytes_ = maxTriangle < 256 ? 1 : maxTriangle < 65536 ? 2 : 4;
   triangles_.resize(size_ * uint64_t(triangleBytes_));
-  if (quality == Quality::kLow) words32_.resize(size_);
-  else words48_.resize(size_);
+  if (quality == Quality::kLow)
+    words32_.resize(size_);
+  else
+    words48_.resize(size_);
   for (size_t i = 0; i < size_; ++i) {
     const auto& [key, data, tri] = packed[i];
-    if (quality == Quality::kLow) words32_[i] = uint32_t(data);
-    else words48_[i] = {uint16_t(data), uint16_t(data >> 16), uint16_t(data >> 32)};
-    for (int b = 0; b < triangleBytes_; ++b) triangles_[i * size_t(triangleBytes_) + size_t(b)] = uint8_t(tri >> 8 * b);
+    if (quality == Quality::kLow)
+      words32_[i] = uint32_t(data);
+    else
+      words48_[i] = {uint16_t(data), uint16_t(data >> 16), uint16_t(data >> 32)};
+    for (int b = 0; b < triangleBytes_; ++b)
+      triangles_[i * size_t(triangleBytes_) + size_t(b)] = uint8_t(tri >> 8 * b);
   }
 }
 
@@ -135,7 +147,8 @@ Surfel SurfelCollector::surfel(uint32_t key, uint64_t i) const {
 
 uint32_t SurfelCollector::triangle(uint64_t i) const {
   uint32_t t = 0;
-  for (int b = 0; b < triangleBytes_; ++b) t |= uint32_t(triangles_[i * uint64_t(triangleBytes_) + uint64_t(b)]) << 8 * b;
+  for (int b = 0; b < triangleBytes_; ++b)
+    t |= uint32_t(triangles_[i * uint64_t(triangleBytes_) + uint64_t(b)]) << 8 * b;
   return t;
 }
 

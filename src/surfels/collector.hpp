@@ -105,8 +105,8 @@ class SurfelCollector {
   CollectorLayout layout_ = CollectorLayout::of(Quality::kLow);
   int shift_ = 0;
   uint64_t size_ = 0;
-  std::vector<uint32_t> starts_;   // keys() + 1
-  std::vector<uint32_t> words32_;  // low quality entries
+  std::vector<uint32_t> starts_;                  // keys() + 1
+  std::vector<uint32_t> words32_;                 // low quality entries
   std::vector<std::array<uint16_t, 3>> words48_;  // high quality entries (6 bytes each)
   int triangleBytes_ = 4;
   std::vector<uint8_t> triangles_;  // size_ x triangleBytes_, little-endian

@@ -29,7 +29,8 @@ std::vector<Surfel> randomSurfels(const CollectorLayout& l, size_t n, uint64_t s
 }
 
 TEST(SurfelCollector, SplitsTheBitsAsThePaper) {
-  const CollectorLayout low = CollectorLayout::of(Quality::kLow), high = CollectorLayout::of(Quality::kHigh);
+  const CollectorLayout low = CollectorLayout::of(Quality::kLow),
+                        high = CollectorLayout::of(Quality::kHigh);
   EXPECT_EQ(3 * low.positionBits + low.normalBits() + 3 * low.colourBits, 44);  // 24 + 11 + 9
   EXPECT_EQ(low.keyBits, 12);
   EXPECT_EQ(low.dataBits(), 32);
@@ -88,8 +89,10 @@ TEST(SurfelCollector, HoldsEverySurfelWithItsTriangleOnce) {
 TEST(SurfelCollector, SideTableIsAsNarrowAsTheTriangleCount) {
   const CollectorLayout l = CollectorLayout::of(Quality::kLow);
   const std::vector<Surfel> in = randomSurfels(l, 10, 1);
-  EXPECT_EQ(SurfelCollector(Quality::kLow, 0, in, std::vector<uint32_t>(10, 255)).triangleBytes(), 1);
-  EXPECT_EQ(SurfelCollector(Quality::kLow, 0, in, std::vector<uint32_t>(10, 65535)).triangleBytes(), 2);
+  EXPECT_EQ(SurfelCollector(Quality::kLow, 0, in, std::vector<uint32_t>(10, 255)).triangleBytes(),
+            1);
+  EXPECT_EQ(SurfelCollector(Quality::kLow, 0, in, std::vector<uint32_t>(10, 65535)).triangleBytes(),
+            2);
   const SurfelCollector wide(Quality::kLow, 0, in, std::vector<uint32_t>(10, 65536));
   EXPECT_EQ(wide.triangleBytes(), 4);
   EXPECT_EQ(wide.triangle(9), 65536u);
@@ -135,13 +138,15 @@ TEST(SurfelCollector, RoundTripStaysWithinTheQuantizationBounds) {
         const Surfel s = c.surfel(key, e);
         const uint32_t i = c.triangle(e);
         const glm::dvec3 back = d.origin + (glm::dvec3(s.x, s.y, s.z) + 0.5) * step;
-        for (int k = 0; k < 3; ++k) ASSERT_LE(std::abs(back[k] - points[i][k]), 0.5 * step * (1 + 1e-9));
+        for (int k = 0; k < 3; ++k)
+          ASSERT_LE(std::abs(back[k] - points[i][k]), 0.5 * step * (1 + 1e-9));
         const glm::dvec3 n(normals.decode(s.normal));
         ASSERT_LE(std::atan2(glm::length(glm::cross(n, dirs[i])), glm::dot(n, dirs[i])),
                   normals.maxErrorBound() + 1e-6);
         uint8_t rgb[3];
         decodeColour(s.colour, l.colourBits, rgb);
-        for (int k = 0; k < 3; ++k) ASSERT_LE(std::abs(rgb[k] - colours[i][k]), 0.5 * colourStep + 0.5);
+        for (int k = 0; k < 3; ++k)
+          ASSERT_LE(std::abs(rgb[k] - colours[i][k]), 0.5 * colourStep + 0.5);
       }
   }
 }

@@ -35,7 +35,9 @@ int childHolding(const Tri& t, const glm::dvec3& a) {
 
 const Tri kFirstOctant = {glm::dvec3(1, 0, 0), glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1)};
 
-glm::dvec3 faceNormal(const Tri& t) { return glm::normalize(glm::cross(t[1] - t[0], t[2] - t[0])); }
+glm::dvec3 faceNormal(const Tri& t) {
+  return glm::normalize(glm::cross(t[1] - t[0], t[2] - t[0]));
+}
 
 glm::dvec3 applySigns(glm::dvec3 v, uint32_t signs) {
   for (int k = 0; k < 3; ++k)

@@ -15,9 +15,8 @@
 // spherical cap is convex), so maxErrorBound() = the maximum of those corner angles over all
 // triangles of the level; the tests check measured errors against it, level by level.
 #include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 namespace lzb::surfels {
 

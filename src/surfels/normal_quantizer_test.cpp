@@ -21,7 +21,8 @@ std::vector<glm::dvec3> directions() {
   std::vector<glm::dvec3> out;
   std::mt19937_64 rng(7);
   std::normal_distribution<double> g(0.0, 1.0);
-  for (int i = 0; i < 200000; ++i) out.push_back(glm::normalize(glm::dvec3(g(rng), g(rng), g(rng))));
+  for (int i = 0; i < 200000; ++i)
+    out.push_back(glm::normalize(glm::dvec3(g(rng), g(rng), g(rng))));
   for (int x = -1; x <= 1; ++x)
     for (int y = -1; y <= 1; ++y)
       for (int z = -1; z <= 1; ++z)
@@ -38,7 +39,8 @@ void nearCorners(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c, 
     for (const glm::dvec3& v : {a, b, c}) out.push_back(glm::normalize(v + 1e-9 * (centre - v)));
     return;
   }
-  const glm::dvec3 ab = glm::normalize(a + b), bc = glm::normalize(b + c), ca = glm::normalize(c + a);
+  const glm::dvec3 ab = glm::normalize(a + b), bc = glm::normalize(b + c),
+                   ca = glm::normalize(c + a);
   nearCorners(a, ab, ca, levels - 1, out);
   nearCorners(ab, b, bc, levels - 1, out);
   nearCorners(ca, bc, c, levels - 1, out);
@@ -94,8 +96,7 @@ TEST(OctahedralNormals, TableEqualsDescentAndCodesRoundTrip) {
       // A sample lies strictly inside its own octant, so it encodes to its own code and the
       // octant's signs are the sample's.
       EXPECT_EQ(q.encode(n), code) << "level " << levels;
-      for (int k = 0; k < 3; ++k)
-        EXPECT_EQ(t[k] < 0.0f, bool(q.octant(code) >> k & 1)) << code;
+      for (int k = 0; k < 3; ++k) EXPECT_EQ(t[k] < 0.0f, bool(q.octant(code) >> k & 1)) << code;
       for (int k = 0; k < 3; ++k) EXPECT_NE(t[k], 0.0f) << code;
     }
   }

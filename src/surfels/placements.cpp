@@ -8,7 +8,9 @@ namespace lzb::surfels {
 
 LevelChoice chooseLevel(double cellPx1, const SurfelParams& p) {
   if (!(cellPx1 < std::numeric_limits<double>::infinity())) return {};
-  const auto passes = [&](int grid, int d) { return cellPx1 / grid <= p.cellFraction * p.coverSide(d); };
+  const auto passes = [&](int grid, int d) {
+    return cellPx1 / grid <= p.cellFraction * p.coverSide(d);
+  };
   for (size_t l = 0; l < p.grids.size(); ++l) {
     if (!passes(p.grids[l], p.sprite)) continue;
     int d = 1;
@@ -76,18 +78,20 @@ struct Walk {
       }
     }
     for (size_t i = 0; i < n.instances.size(); ++i)
-      visit(n.instances[i].node, world * n.instances[i].transform, idBase + scene.childOffset(node, i));
+      visit(n.instances[i].node, world * n.instances[i].transform,
+            idBase + scene.childOffset(node, i));
   }
 };
 
 }  // namespace
 
 std::vector<Placement> visiblePlacements(const Scene& scene, const std::vector<Domain>& domains,
-                                         const std::vector<Bounds>& meshBounds, const Camera& camera,
-                                         const SurfelParams& params) {
+                                         const std::vector<Bounds>& meshBounds,
+                                         const Camera& camera, const SurfelParams& params) {
   const double halfW = 0.5 * camera.width(), halfH = 0.5 * camera.height();
   const double scale = camera.pixelsPerUnitAt(1.0);
-  Walk w{scene, domains, meshBounds, camera, camera.frustum(), params, halfW / scale, halfH / scale, {}};
+  Walk w{scene,  domains,       meshBounds,    camera, camera.frustum(),
+         params, halfW / scale, halfH / scale, {}};
   w.visit(scene.root, glm::dmat4(1.0), 0);
   return std::move(w.out);
 }

@@ -16,13 +16,12 @@
 // z-buffer with the same (depth, ID) key: near objects are exact.
 //
 // The projected cell of a grid n is cellPx1 / n, with cellPx1 the cube's projected extent at the
-// nearest depth of the object's bounding box: a box edge e spans |right . e| + |x / z| |forward . e|
-// per unit of depth in x (the second term: its depth change seen off axis, with the largest
-// |x / z| of the object), likewise in y.
+// nearest depth of the object's bounding box: a box edge e spans |right . e| + |x / z| |forward .
+// e| per unit of depth in x (the second term: its depth change seen off axis, with the largest |x /
+// z| of the object), likewise in y.
 #include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "src/core/camera.hpp"
 #include "src/core/scene.hpp"
@@ -54,7 +53,7 @@ LevelChoice chooseLevel(double cellPx1, const SurfelParams& params);
 // depth, projected size and level (domains: per node, its surfel cube; meshBounds: per node, the
 // bounds of its own triangles).
 std::vector<Placement> visiblePlacements(const Scene& scene, const std::vector<Domain>& domains,
-                                         const std::vector<Bounds>& meshBounds, const Camera& camera,
-                                         const SurfelParams& params);
+                                         const std::vector<Bounds>& meshBounds,
+                                         const Camera& camera, const SurfelParams& params);
 
 }  // namespace lzb::surfels

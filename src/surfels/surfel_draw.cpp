@@ -10,7 +10,8 @@
 namespace lzb::surfels {
 
 PlacedLevel PlacedLevel::make(const SurfelLevel& level, const glm::dmat4& world, uint64_t idBase,
-                              const Camera& camera, int sprite, uint64_t count, bool cullBackfaces) {
+                              const Camera& camera, int sprite, uint64_t count,
+                              bool cullBackfaces) {
   PlacedLevel p;
   p.level = &level;
   p.idBase = idBase;
@@ -21,7 +22,8 @@ PlacedLevel PlacedLevel::make(const SurfelLevel& level, const glm::dmat4& world,
   const glm::dvec3 c0 = glm::dvec3(world * glm::dvec4(origin, 1.0)) - camera.position();
   const glm::dvec3 axes[3] = {camera.right(), camera.up(), camera.forward()};
   for (int r = 0; r < 3; ++r) {
-    for (int i = 0; i < 3; ++i) p.toCamera[r][i] = float(glm::dot(axes[r], glm::dvec3(world[i]) * step));
+    for (int i = 0; i < 3; ++i)
+      p.toCamera[r][i] = float(glm::dot(axes[r], glm::dvec3(world[i]) * step));
     p.toCamera[r][3] = float(glm::dot(axes[r], c0));
   }
   const glm::dvec3 eyeLocal = glm::dvec3(glm::inverse(world) * glm::dvec4(camera.position(), 1.0));
@@ -40,8 +42,8 @@ PlacedLevel PlacedLevel::make(const SurfelLevel& level, const glm::dmat4& world,
   return p;
 }
 
-std::vector<SurfelJob> makeJobs(std::span<const PlacedLevel> placed, std::span<const uint32_t> which,
-                                uint64_t chunk) {
+std::vector<SurfelJob> makeJobs(std::span<const PlacedLevel> placed,
+                                std::span<const uint32_t> which, uint64_t chunk) {
   std::vector<SurfelJob> jobs;
   for (uint32_t i : which)
     for (uint64_t b = 0; b < placed[i].count; b += chunk)
@@ -55,10 +57,12 @@ namespace {
 template <bool kWide>
 class Splatters {
  public:
-  Splatters(const Camera& camera, bool disc, KeyBuffer& keys) : camera_(camera), disc_(disc), keys_(keys) {}
+  Splatters(const Camera& camera, bool disc, KeyBuffer& keys)
+      : camera_(camera), disc_(disc), keys_(keys) {}
   void add(int d, float x, float y, float z, uint64_t id) {
     if (d == 1) {
-      if (!pixel_) pixel_ = std::make_unique<PointSplatter<kWide, true>>(SplatSetup::from(camera_, 1), keys_);
+      if (!pixel_)
+        pixel_ = std::make_unique<PointSplatter<kWide, true>>(SplatSetup::from(camera_, 1), keys_);
       pixel_->add(x, y, z, id);
       return;
     }
@@ -139,7 +143,8 @@ void drawRange(const PlacedLevel& p, uint64_t begin, uint64_t end, bool cull,
       const float y = float((ry & low) | ky | (ry >> shift) << (shift + 4));
       const float z = float((rz & low) | kz | (rz >> shift) << (shift + 4));
       if (cull) {
-        const glm::vec3& n = normals.decode((uint32_t(data >> normalShift) & normalMask) | octantBits);
+        const glm::vec3& n =
+            normals.decode((uint32_t(data >> normalShift) & normalMask) | octantBits);
         if (n.x * (x - p.eye.x) + n.y * (y - p.eye.y) + n.z * (z - p.eye.z) > 0.0f) {
           ++counts.backfacing;
           continue;
@@ -158,12 +163,18 @@ void drawJob(const PlacedLevel& p, const SurfelJob& j, bool cull, const Octahedr
              Sink& sink, DrawCounts& counts) {
   const bool high = p.level->collector.quality() == Quality::kHigh;
   switch (p.level->collector.triangleBytes() * 2 + int(high)) {
-    case 2: return drawRange<false, uint8_t>(p, j.begin, j.end, cull, normals, sink, counts);
-    case 3: return drawRange<true, uint8_t>(p, j.begin, j.end, cull, normals, sink, counts);
-    case 4: return drawRange<false, uint16_t>(p, j.begin, j.end, cull, normals, sink, counts);
-    case 5: return drawRange<true, uint16_t>(p, j.begin, j.end, cull, normals, sink, counts);
-    case 8: return drawRange<false, uint32_t>(p, j.begin, j.end, cull, normals, sink, counts);
-    default: return drawRange<true, uint32_t>(p, j.begin, j.end, cull, normals, sink, counts);
+    case 2:
+      return drawRange<false, uint8_t>(p, j.begin, j.end, cull, normals, sink, counts);
+    case 3:
+      return drawRange<true, uint8_t>(p, j.begin, j.end, cull, normals, sink, counts);
+    case 4:
+      return drawRange<false, uint16_t>(p, j.begin, j.end, cull, normals, sink, counts);
+    case 5:
+      return drawRange<true, uint16_t>(p, j.begin, j.end, cull, normals, sink, counts);
+    case 8:
+      return drawRange<false, uint32_t>(p, j.begin, j.end, cull, normals, sink, counts);
+    default:
+      return drawRange<true, uint32_t>(p, j.begin, j.end, cull, normals, sink, counts);
   }
 }
 
@@ -196,8 +207,9 @@ DrawCounts drawSurfels(std::span<const PlacedLevel> placed, std::span<const Surf
                        const Camera& camera, bool disc, bool cullBackfaces,
                        const OctahedralNormals& normals, KeyBuffer& keys, int threads) {
   threads = std::max(threads, 1);
-  return keys.wide() ? drawAll<true>(placed, jobs, camera, disc, cullBackfaces, normals, keys, threads)
-                     : drawAll<false>(placed, jobs, camera, disc, cullBackfaces, normals, keys, threads);
+  return keys.wide()
+             ? drawAll<true>(placed, jobs, camera, disc, cullBackfaces, normals, keys, threads)
+             : drawAll<false>(placed, jobs, camera, disc, cullBackfaces, normals, keys, threads);
 }
 
 }  // namespace lzb::surfels

@@ -10,10 +10,9 @@
 // that octant faces away from every point of the object's cube, which the per-entry test would
 // find of each of its surfels: the same image, fewer reads.
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <span>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "src/core/camera.hpp"
 #include "src/core/depth_key.hpp"
@@ -26,11 +25,11 @@ namespace lzb::surfels {
 struct PlacedLevel {
   const SurfelLevel* level = nullptr;
   uint64_t idBase = 0;
-  float toCamera[3][4];    // camera-space x, y, depth of lattice point q: rows . (q, 1)
-  glm::vec3 eye{0.0f};     // the eye in lattice units
+  float toCamera[3][4];  // camera-space x, y, depth of lattice point q: rows . (q, 1)
+  glm::vec3 eye{0.0f};   // the eye in lattice units
   uint8_t culledOctants = 0;
   int sprite = 1;
-  uint64_t count = 0;      // entries drawn: [0, count) of the collector's order
+  uint64_t count = 0;  // entries drawn: [0, count) of the collector's order
 
   static PlacedLevel make(const SurfelLevel& level, const glm::dmat4& world, uint64_t idBase,
                           const Camera& camera, int sprite, uint64_t count, bool cullBackfaces);
@@ -49,8 +48,8 @@ struct DrawCounts {
 };
 
 // Cuts each placed level's [0, count) into jobs of at most `chunk` entries.
-std::vector<SurfelJob> makeJobs(std::span<const PlacedLevel> placed, std::span<const uint32_t> which,
-                                uint64_t chunk);
+std::vector<SurfelJob> makeJobs(std::span<const PlacedLevel> placed,
+                                std::span<const uint32_t> which, uint64_t chunk);
 
 // Draws the jobs into keys (sized to the camera) on `threads` threads; the buffer does not
 // depend on the thread count or the order of the jobs.

@@ -31,7 +31,8 @@ class SurfelMethod : public Method {
     addSharedOption(c, "--splat", t_.splat,
                     "rzb, hybrid: splat size d (d x d pixels; d^2 fewer samples); surfels: the "
                     "largest sprite");
-    c.add_option("--sprite-shape", t_.shape, "surfels: square | disc sprites")->capture_default_str();
+    c.add_option("--sprite-shape", t_.shape, "surfels: square | disc sprites")
+        ->capture_default_str();
     c.add_option("--surfel-cell", t_.cell,
                  "surfels: a level is used when its cell projects to at most this fraction of the "
                  "sprite (0.5: no holes); objects no level fits stay polygons")
@@ -40,7 +41,8 @@ class SurfelMethod : public Method {
                  "surfels: a cell's triangles averaged into one surfel (average) or into two when "
                  "normals or colours differ too much (split)")
         ->capture_default_str();
-    addSharedOption(c, "--backfaces", t_.backfaces, "rzb, hybrid, surfels: drop | keep samples (surfels) on back faces");
+    addSharedOption(c, "--backfaces", t_.backfaces,
+                    "rzb, hybrid, surfels: drop | keep samples (surfels) on back faces");
     c.add_option("--budget-ms", t_.budgetMs,
                  "surfels: time budget of the surfel pass in ms (0: none): the surfels it buys at "
                  "--budget-rate, drawn in each collector's shuffled order")
@@ -50,14 +52,16 @@ class SurfelMethod : public Method {
                  "image then depends on this run's timing; one rank only) or a rate (the same "
                  "image anywhere)")
         ->capture_default_str();
-    c.add_option("--surfel-build", t_.build,
-                 "surfels: lazy (a level is built when a frame first needs it, then cached) | setup "
-                 "(every level of every object before the first frame)")
+    c.add_option(
+         "--surfel-build", t_.build,
+         "surfels: lazy (a level is built when a frame first needs it, then cached) | setup "
+         "(every level of every object before the first frame)")
         ->capture_default_str();
   }
   void validate() override { params_ = surfels::parseSurfelOptions(t_); }
   nlohmann::json parameters() const override { return params_.toJson(); }
-  std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const override {
+  std::unique_ptr<Renderer> create(const Scene& scene,
+                                   const RenderOptions& options) const override {
     return std::make_unique<surfels::SurfelRenderer>(scene, options, params_);
   }
 
@@ -68,6 +72,8 @@ class SurfelMethod : public Method {
 
 }  // namespace
 
-std::unique_ptr<Method> makeSurfelMethod() { return std::make_unique<SurfelMethod>(); }
+std::unique_ptr<Method> makeSurfelMethod() {
+  return std::make_unique<SurfelMethod>();
+}
 
 }  // namespace lzb

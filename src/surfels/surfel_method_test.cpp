@@ -1,10 +1,9 @@
 // The surfel options: defaults as documented, and out-of-range values as InputErrors naming the
 // option (exit status 2 in lzb, tests/cli_test.cpp).
-#include "src/surfels/surfel_params.hpp"
-
 #include <gtest/gtest.h>
 
 #include "src/core/error.hpp"
+#include "src/surfels/surfel_params.hpp"
 
 namespace lzb::surfels {
 namespace {

@@ -53,7 +53,9 @@ void SurfelParams::validate() const {
             "--surfel-grids", "must be ascending powers of two within the collector's lattice");
 }
 
-double SurfelParams::coverSide(int d) const { return disc ? double(d) / std::sqrt(2.0) : double(d); }
+double SurfelParams::coverSide(int d) const {
+  return disc ? double(d) / std::sqrt(2.0) : double(d);
+}
 
 nlohmann::json SurfelParams::toJson() const {
   return {{"surfelize", surfelize == Surfelizer::kRaster ? "raster" : "shots"},
@@ -88,8 +90,10 @@ SurfelParams parseSurfelOptions(const SurfelOptionText& t) {
           "expected drop or keep, got '" + t.backfaces + "'");
   p.dropBackfaces = t.backfaces == "drop";
   if (t.budgetRate != "auto") {
-    p.budgetRate = parseNumber(t.budgetRate, "--budget-rate", "'auto' or a rate > 0 surfels per ms");
-    require(p.budgetRate > 0.0, "--budget-rate", "expected 'auto' or a rate > 0, got '" + t.budgetRate + "'");
+    p.budgetRate =
+        parseNumber(t.budgetRate, "--budget-rate", "'auto' or a rate > 0 surfels per ms");
+    require(p.budgetRate > 0.0, "--budget-rate",
+            "expected 'auto' or a rate > 0, got '" + t.budgetRate + "'");
   }
   require(t.build == "lazy" || t.build == "setup", "--surfel-build",
           "expected lazy or setup, got '" + t.build + "'");

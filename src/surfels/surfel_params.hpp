@@ -1,10 +1,9 @@
 #pragma once
 // The surfel method's parameters (--method surfels): how objects are surfelized, which grids
 // exist, how surfels are drawn, the switch to polygons and the time budget.
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "src/surfels/collector.hpp"
 #include "src/surfels/surfelize.hpp"
@@ -12,17 +11,17 @@
 namespace lzb::surfels {
 
 struct SurfelParams {
-  Surfelizer surfelize = Surfelizer::kRaster;  // --surfelize raster | shots
-  Quality quality = Quality::kHigh;            // --surfel-quality low | high
+  Surfelizer surfelize = Surfelizer::kRaster;                        // --surfelize raster | shots
+  Quality quality = Quality::kHigh;                                  // --surfel-quality low | high
   std::vector<int> grids = {1, 2, 4, 8, 16, 32, 64, 128, 256, 512};  // --surfel-grids (auto)
-  int sprite = 1;                              // --splat: the largest sprite, d x d pixels
-  bool disc = false;                           // --sprite-shape square | disc
-  double cellFraction = 0.5;                   // --surfel-cell
-  bool split = true;                           // --collisions split | average
-  bool dropBackfaces = true;                   // --backfaces drop | keep
-  double budgetMs = 0.0;                       // --budget-ms (0: no budget)
-  double budgetRate = 0.0;                     // --budget-rate, surfels per ms (0: measured)
-  bool buildAtSetup = false;                   // --surfel-build setup | lazy
+  int sprite = 1;             // --splat: the largest sprite, d x d pixels
+  bool disc = false;          // --sprite-shape square | disc
+  double cellFraction = 0.5;  // --surfel-cell
+  bool split = true;          // --collisions split | average
+  bool dropBackfaces = true;  // --backfaces drop | keep
+  double budgetMs = 0.0;      // --budget-ms (0: no budget)
+  double budgetRate = 0.0;    // --budget-rate, surfels per ms (0: measured)
+  bool buildAtSetup = false;  // --surfel-build setup | lazy
 
   // Throws InputError naming the option for out-of-range values.
   void validate() const;
@@ -34,9 +33,8 @@ struct SurfelParams {
 
 // The option strings as the command line gives them.
 struct SurfelOptionText {
-  std::string surfelize = "raster", quality = "high", grids = "auto",
-              shape = "square", collisions = "split", backfaces = "drop", budgetRate = "auto",
-              build = "lazy";
+  std::string surfelize = "raster", quality = "high", grids = "auto", shape = "square",
+              collisions = "split", backfaces = "drop", budgetRate = "auto", build = "lazy";
   int splat = 1;
   double cell = 0.5, budgetMs = 0.0;
 };

@@ -24,14 +24,16 @@ Mesh uvSphere(int slices, int stacks) {
   const Rgba8 grey = packRgba8(200, 200, 200);
   // Wound so that every normal points away from the centre (the mesh is closed).
   const auto outward = [&](const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-    if (glm::dot(glm::cross(b - a, c - a), a + b + c) >= 0.0f) mesh.add(a, b, c, grey);
-    else mesh.add(a, c, b, grey);
+    if (glm::dot(glm::cross(b - a, c - a), a + b + c) >= 0.0f)
+      mesh.add(a, b, c, grey);
+    else
+      mesh.add(a, c, b, grey);
   };
   for (int st = 0; st < stacks; ++st)
     for (int sl = 0; sl < slices; ++sl) {
       const glm::vec3 a = point(st, sl), b = point(st + 1, sl), c = point(st + 1, sl + 1),
                       d = point(st, sl + 1);
-      if (st > 0) outward(a, b, d);             // the pole rows are one triangle per slice
+      if (st > 0) outward(a, b, d);  // the pole rows are one triangle per slice
       if (st < stacks - 1) outward(b, c, d);
     }
   return mesh;
@@ -116,10 +118,12 @@ void SurfelRenderer::applyBudget(Frame& f) const {
   // The budget as a count (rate x time), then one fraction of every collector: its shuffled
   // prefix. The count, not the clock, decides, so every rank and thread draws the same surfels.
   f.budget = uint64_t(std::llround(params_.budgetMs * budgetRate()));
-  const double fraction = f.selected > 0 ? std::min(1.0, double(f.budget) / double(f.selected)) : 1.0;
+  const double fraction =
+      f.selected > 0 ? std::min(1.0, double(f.budget) / double(f.selected)) : 1.0;
   for (size_t i = 0; i < f.placements.size(); ++i)
     if (f.placements[i].level != kPolygons)
-      f.work[i] = std::min<uint64_t>(f.work[i], uint64_t(std::llround(fraction * double(f.work[i]))));
+      f.work[i] =
+          std::min<uint64_t>(f.work[i], uint64_t(std::llround(fraction * double(f.work[i]))));
 }
 
 void SurfelRenderer::deal(Frame& f) const {
@@ -170,7 +174,8 @@ void SurfelRenderer::drawSurfelPass(const Frame& f, FrameStats& stats) {
     if (p.level == kPolygons) continue;
     if (item.placed != last) {
       placed.push_back(PlacedLevel::make(*levels_[p.node][size_t(p.level)], p.world, p.idBase,
-                                         camera, p.sprite, f.work[item.placed], params_.dropBackfaces));
+                                         camera, p.sprite, f.work[item.placed],
+                                         params_.dropBackfaces));
       last = item.placed;
     }
     jobs.push_back({uint32_t(placed.size() - 1), item.begin, item.end});
@@ -197,8 +202,9 @@ void SurfelRenderer::render(const Camera& camera, int frame, const WorkShare& sh
     throw std::invalid_argument("surfels: framebuffer and camera sizes differ");
   // A measured rate is this rank's own: ranks that disagree on the budget would deal different
   // surfel runs, drawing some twice and leaving others out of the prefix.
-  require(!(params_.budgetMs > 0.0 && params_.budgetRate == 0.0 && share.size > 1), "--budget-rate",
-          "give a rate (surfels per ms) to budget on several ranks: 'auto' measures each rank's own");
+  require(
+      !(params_.budgetMs > 0.0 && params_.budgetRate == 0.0 && share.size > 1), "--budget-rate",
+      "give a rate (surfels per ms) to budget on several ranks: 'auto' measures each rank's own");
   Frame f;
   f.camera = &camera;
   f.share = share;
@@ -251,7 +257,8 @@ void SurfelRenderer::report(const Frame& f, FrameStats& stats) const {
   constexpr size_t kListedObjects = 32;
   if (objectGrids.size() <= kListedObjects) {
     nlohmann::json per = nlohmann::json::object();
-    for (const auto& [name, set] : objectGrids) per[name] = std::vector<int>(set.begin(), set.end());
+    for (const auto& [name, set] : objectGrids)
+      per[name] = std::vector<int>(set.begin(), set.end());
     stats.shared["object_grids"] = per;
   }
   stats.setShared("surfels_selected", double(f.selected));
@@ -326,7 +333,8 @@ void SurfelRenderer::measureRate() {
                 options_.threads);
     seconds += draw.seconds();
   }
-  measuredRate_ = double(kRounds) * double(level.collector.size()) / (1000.0 * std::max(seconds, 1e-9));
+  measuredRate_ =
+      double(kRounds) * double(level.collector.size()) / (1000.0 * std::max(seconds, 1e-9));
   rateSeconds_ = clock.seconds();
 }
 

@@ -55,11 +55,11 @@ class SurfelRenderer : public Renderer {
     const Camera* camera = nullptr;
     WorkShare share;
     std::vector<Placement> placements;
-    std::vector<uint64_t> work;     // per placement: surfels to draw, or triangles
-    uint64_t selected = 0;          // surfels of every surfel placement (before the budget)
-    uint64_t budget = 0;            // surfels the budget buys (0: no budget)
-    std::vector<SurfelJob> items;   // placement order; polygons: one item, begin == end == 0
-    std::vector<uint32_t> mine;     // this rank's items
+    std::vector<uint64_t> work;    // per placement: surfels to draw, or triangles
+    uint64_t selected = 0;         // surfels of every surfel placement (before the budget)
+    uint64_t budget = 0;           // surfels the budget buys (0: no budget)
+    std::vector<SurfelJob> items;  // placement order; polygons: one item, begin == end == 0
+    std::vector<uint32_t> mine;    // this rank's items
   };
   void cull(Frame& f) const;
   uint64_t buildLevels(const Frame& f);  // returns the levels built
@@ -72,7 +72,9 @@ class SurfelRenderer : public Renderer {
   // The level of detail `level` of `node`, built on first use and kept.
   const SurfelLevel& level(uint32_t node, int index);
   // Surfels per millisecond the budget converts with (given, or measured at set-up).
-  double budgetRate() const { return params_.budgetRate > 0.0 ? params_.budgetRate : measuredRate_; }
+  double budgetRate() const {
+    return params_.budgetRate > 0.0 ? params_.budgetRate : measuredRate_;
+  }
   const SurfelParams& params() const { return params_; }
   const OctahedralNormals& normals() const { return normals_; }
 
@@ -85,10 +87,10 @@ class SurfelRenderer : public Renderer {
   RenderOptions options_;
   SurfelParams params_;
   OctahedralNormals normals_;
-  std::vector<Domain> domains_;                                  // per node
-  std::vector<Bounds> meshBounds_;                               // per node: its own triangles
+  std::vector<Domain> domains_;                                    // per node
+  std::vector<Bounds> meshBounds_;                                 // per node: its own triangles
   std::vector<std::vector<std::unique_ptr<SurfelLevel>>> levels_;  // [node][level]
-  std::vector<std::vector<uint32_t>> allTriangles_;              // per node, for draw lists
+  std::vector<std::vector<uint32_t>> allTriangles_;                // per node, for draw lists
   NativeRasterizer raster_;
   KeyBuffer keys_;
   Framebuffer points_;

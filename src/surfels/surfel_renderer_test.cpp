@@ -16,7 +16,9 @@ namespace {
 
 using namespace testing;
 
-SurfelParams defaults() { return parseSurfelOptions({}); }
+SurfelParams defaults() {
+  return parseSurfelOptions({});
+}
 
 TEST(SurfelRenderer, NoHolesOnAClosedMeshAtTheChosenLevel) {
   const Scene scene = spheres({{0.0, 0.0, 0.0}});
@@ -34,8 +36,9 @@ TEST(SurfelRenderer, NoHolesOnAClosedMeshAtTheChosenLevel) {
           SurfelRenderer r(scene, options(), p);
           FrameStats stats;
           const Framebuffer image = render(r, cam, &stats);
-          const std::string what = "sprite " + std::to_string(sprite) + (disc ? " disc" : " square") +
-                                   (drop ? " drop" : " keep") + (how == Surfelizer::kRaster ? " raster" : " shots");
+          const std::string what = "sprite " + std::to_string(sprite) +
+                                   (disc ? " disc" : " square") + (drop ? " drop" : " keep") +
+                                   (how == Surfelizer::kRaster ? " raster" : " shots");
           ASSERT_EQ(stats.shared["placements_surfels"], 1.0) << what;  // drawn as surfels
           EXPECT_EQ(holes(image, truth), 0u) << what << ", " << stats.shared.dump();
         }
@@ -110,14 +113,14 @@ TEST(SurfelRenderer, ChoosesTheCoarsestHoleFreeLevelAndTheSmallestSprite) {
   SurfelParams p = defaults();  // grids 1..512, sprite 1, cells at most half the sprite
   EXPECT_EQ(chooseLevel(100.0, p).level, 8);  // 100 / 256 <= 0.5 < 100 / 128
   EXPECT_EQ(chooseLevel(100.0, p).sprite, 1);
-  EXPECT_EQ(chooseLevel(0.3, p).level, 0);  // a sub-pixel object: one cell
-  EXPECT_EQ(chooseLevel(300.0, p).level, kPolygons);  // 300 / 512 > 0.5: polygons
+  EXPECT_EQ(chooseLevel(0.3, p).level, 0);               // a sub-pixel object: one cell
+  EXPECT_EQ(chooseLevel(300.0, p).level, kPolygons);     // 300 / 512 > 0.5: polygons
   EXPECT_EQ(chooseLevel(INFINITY, p).level, kPolygons);  // reaches the near plane
   p.sprite = 4;
   EXPECT_EQ(chooseLevel(300.0, p).level, 8);  // 300 / 128 = 2.3 > 0.5 x 4; 300 / 256 fits
   EXPECT_EQ(p.grids[size_t(chooseLevel(300.0, p).level)], 256);
   EXPECT_EQ(chooseLevel(300.0, p).sprite, 3);  // 1.17 <= 0.5 d from d = 3
-  p.disc = true;  // a disc of d covers d / sqrt 2
+  p.disc = true;                               // a disc of d covers d / sqrt 2
   EXPECT_EQ(chooseLevel(300.0, p).sprite, 4);
   p.grids = {64, 128};
   EXPECT_EQ(chooseLevel(0.3, p).level, 0);
@@ -133,7 +136,8 @@ TEST(SurfelRenderer, InstancesShareOneSurfelSetPerObject) {
   EXPECT_EQ(stats.shared["objects_surfels"], 1.0);  // the one sphere node
   EXPECT_GT(stats.shared["placements_surfels"].get<double>(), 500.0);
   // One level per grid in use, whatever the number of placements.
-  EXPECT_EQ(stats.shared["levels_cached"].get<double>(), double(stats.shared["grid_placements"].size()));
+  EXPECT_EQ(stats.shared["levels_cached"].get<double>(),
+            double(stats.shared["grid_placements"].size()));
   EXPECT_EQ(stats.shared["collector_bytes_per_surfel"], 6.0);
   EXPECT_EQ(stats.shared["id_bytes_per_surfel"], 1.0);  // 200 triangles
   // The cache: a second frame builds nothing.
@@ -181,7 +185,8 @@ TEST(SurfelRenderer, BudgetDrawsTheShuffledPrefixOnAnyThreadsAndRanks) {
     int x0 = fb.width, x1 = -1, y0 = fb.height, y1 = -1;
     for (int y = 0; y < fb.height; ++y)
       for (int x = 0; x < fb.width; ++x)
-        if (fb.covered(fb.index(x, y))) x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+        if (fb.covered(fb.index(x, y)))
+          x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
     return glm::ivec2(x1 - x0, y1 - y0);
   };
   EXPECT_GE(extent(a).x, 0.9 * extent(whole).x);

@@ -1,8 +1,7 @@
 #pragma once
 // Scenes, frames and the exact reference for the surfel tests.
-#include <string>
-
 #include <glm/gtc/matrix_transform.hpp>
+#include <string>
 
 #include "raycast/lzb_test_util.hpp"
 #include "raycast/ray_witness.hpp"
@@ -36,7 +35,8 @@ inline Scene spheres(const std::vector<glm::dvec3>& centres, double radius = 1.0
   return s;
 }
 
-inline Camera lookAt(const glm::dvec3& eye, const glm::dvec3& target, int w, int h, double fov = 45.0) {
+inline Camera lookAt(const glm::dvec3& eye, const glm::dvec3& target, int w, int h,
+                     double fov = 45.0) {
   CameraSpec spec;
   spec.position = eye;
   spec.lookAt = target;

@@ -129,8 +129,9 @@ bool sampleInCell(const Tri& t, const glm::dvec3& lo, glm::dvec3& out) {
 Candidate makeCandidate(const glm::ivec3& cell, int grid, uint32_t tri, uint32_t weight,
                         const glm::dvec3& sample) {
   const glm::dvec3 d = sample - (glm::dvec3(cell) + 0.5);
-  return {uint64_t(cell.x) + uint64_t(grid) * (uint64_t(cell.y) + uint64_t(grid) * uint64_t(cell.z)),
-          tri, weight, glm::vec3(sample), float(glm::dot(d, d))};
+  return {
+      uint64_t(cell.x) + uint64_t(grid) * (uint64_t(cell.y) + uint64_t(grid) * uint64_t(cell.z)),
+      tri, weight, glm::vec3(sample), float(glm::dot(d, d))};
 }
 
 // The cells of the bounding box that triangle t overlaps, column by column along its dominant
@@ -138,7 +139,8 @@ Candidate makeCandidate(const glm::ivec3& cell, int grid, uint32_t tri, uint32_t
 void rasterTriangle(const Tri& g, uint32_t tri, int grid, std::vector<Candidate>& out) {
   glm::ivec3 lo, hi;
   for (int k = 0; k < 3; ++k) {
-    const double mn = std::min({g[0][k], g[1][k], g[2][k]}), mx = std::max({g[0][k], g[1][k], g[2][k]});
+    const double mn = std::min({g[0][k], g[1][k], g[2][k]}),
+                 mx = std::max({g[0][k], g[1][k], g[2][k]});
     lo[k] = std::clamp(int(std::floor(mn)), 0, grid - 1);
     hi[k] = std::clamp(int(std::floor(mx)), 0, grid - 1);
   }
@@ -239,18 +241,21 @@ std::vector<Candidate> shoot(const Mesh& mesh, const Domain& d, int grid, const 
       const glm::dvec3 n = glm::cross(g[1] - g[0], g[2] - g[0]);
       const double nd = glm::dot(n, dir);
       if (nd == 0.0) continue;
-      const glm::dvec3 o = centre + (px + 0.5 - 0.5 * size) * kPitch * e1 -
-                           (py + 0.5 - 0.5 * size) * kPitch * e2;
-      const glm::dvec3 p = glm::clamp(o + glm::dot(n, g[0] - o) / nd * dir, glm::dvec3(0.0),
-                                      glm::dvec3(grid));
-      const glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(p)), glm::ivec3(0), glm::ivec3(grid - 1));
+      const glm::dvec3 o =
+          centre + (px + 0.5 - 0.5 * size) * kPitch * e1 - (py + 0.5 - 0.5 * size) * kPitch * e2;
+      const glm::dvec3 p =
+          glm::clamp(o + glm::dot(n, g[0] - o) / nd * dir, glm::dvec3(0.0), glm::dvec3(grid));
+      const glm::ivec3 cell =
+          glm::clamp(glm::ivec3(glm::floor(p)), glm::ivec3(0), glm::ivec3(grid - 1));
       out.push_back(makeCandidate(cell, grid, uint32_t(id), 1, p));
     }
   mergeSameTriangle(out);
   return out;
 }
 
-glm::dvec3 rgb(Rgba8 c) { return {double(channel(c, 0)), double(channel(c, 1)), double(channel(c, 2))}; }
+glm::dvec3 rgb(Rgba8 c) {
+  return {double(channel(c, 0)), double(channel(c, 1)), double(channel(c, 2))};
+}
 
 bool coloursClose(Rgba8 a, Rgba8 b) {
   for (int k = 0; k < 3; ++k)
@@ -268,7 +273,11 @@ class CellMerger {
  public:
   CellMerger(const Mesh& mesh, const OctahedralNormals& normals, const CollectorLayout& layout,
              int grid, bool split)
-      : mesh_(mesh), normals_(normals), layout_(layout), grid_(grid), split_(split),
+      : mesh_(mesh),
+        normals_(normals),
+        layout_(layout),
+        grid_(grid),
+        split_(split),
         cosSplit_(std::cos(kSplitDegrees * 3.14159265358979323846 / 180.0)) {}
 
   // One cell's candidates [first, last) into one or two surfels.
@@ -319,7 +328,8 @@ class CellMerger {
     Surfel s;
     const uint32_t per = layout_.lattice() / uint32_t(grid_);  // lattice steps per cell
     const uint64_t g = uint64_t(grid_);
-    const uint32_t cell[3] = {uint32_t(rep.cell % g), uint32_t(rep.cell / g % g), uint32_t(rep.cell / (g * g))};
+    const uint32_t cell[3] = {uint32_t(rep.cell % g), uint32_t(rep.cell / g % g),
+                              uint32_t(rep.cell / (g * g))};
     uint32_t* q[3] = {&s.x, &s.y, &s.z};
     for (int k = 0; k < 3; ++k) {
       const double u = std::floor(double(rep.sample[k]) * double(per));
@@ -340,8 +350,9 @@ class CellMerger {
   double cosSplit_;
 };
 
-Merged mergeCells(const std::vector<Candidate>& c, const Mesh& mesh, const OctahedralNormals& normals,
-                  const CollectorLayout& layout, int grid, bool split) {
+Merged mergeCells(const std::vector<Candidate>& c, const Mesh& mesh,
+                  const OctahedralNormals& normals, const CollectorLayout& layout, int grid,
+                  bool split) {
   const CellMerger merger(mesh, normals, layout, grid, split);
   Merged out;
   for (size_t i = 0; i < c.size();) {
@@ -391,7 +402,8 @@ std::vector<Candidate> shotCandidates(const Mesh& mesh, const Domain& d, int gri
   return all;
 }
 
-SurfelLevel surfelize(const Mesh& mesh, const OctahedralNormals& normals, const SurfelizeParams& p) {
+SurfelLevel surfelize(const Mesh& mesh, const OctahedralNormals& normals,
+                      const SurfelizeParams& p) {
   const CollectorLayout layout = CollectorLayout::of(p.quality);
   if (p.grid < 1 || uint32_t(p.grid) > layout.lattice() || (p.grid & (p.grid - 1)) != 0)
     throw std::invalid_argument("surfelize: grid must be a power of two up to the lattice");
@@ -405,7 +417,8 @@ SurfelLevel surfelize(const Mesh& mesh, const OctahedralNormals& normals, const 
                                        ? rasterCandidates(mesh, level.domain, p.grid, p.threads)
                                        : shotCandidates(mesh, level.domain, p.grid, p.threads);
   const Merged m = mergeCells(c, mesh, normals, layout, p.grid, p.split);
-  const int shift = std::min(log2Exact(layout.lattice() / uint32_t(p.grid)), layout.positionBits - 4);
+  const int shift =
+      std::min(log2Exact(layout.lattice() / uint32_t(p.grid)), layout.positionBits - 4);
   level.collector = SurfelCollector(p.quality, shift, m.surfels, m.triangles);
   level.cells = m.cells;
   level.splitCells = m.splitCells;

@@ -23,9 +23,8 @@
 // surfel with its own representative; a cell keeps at most two. The result depends on neither the
 // thread count nor the order of the work.
 #include <cstdint>
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "src/core/scene.hpp"
 #include "src/surfels/collector.hpp"
@@ -48,7 +47,7 @@ struct Domain {
 struct SurfelizeParams {
   Surfelizer method = Surfelizer::kRaster;
   Quality quality = Quality::kHigh;
-  int grid = 64;     // cells per axis: a power of two, at most the collector's lattice
+  int grid = 64;  // cells per axis: a power of two, at most the collector's lattice
   bool split = true;
   int threads = 1;
 };
@@ -69,7 +68,7 @@ SurfelLevel surfelize(const Mesh& mesh, const OctahedralNormals& normals, const 
 
 // A cell candidate before the merge (exposed for the tests).
 struct Candidate {
-  uint64_t cell;     // x + n (y + n z)
+  uint64_t cell;  // x + n (y + n z)
   uint32_t triangle;
   uint32_t weight;   // pixels (shots) or 1 (raster)
   glm::vec3 sample;  // grid units

@@ -46,8 +46,8 @@ TEST(Surfelize, RasterFindsExactlyTheCellsEachTriangleOverlaps) {
       for (int y = 0; y < kGrid; ++y)
         for (int x = 0; x < kGrid; ++x) {
           const glm::dvec3 lo(x, y, z);
-          if (triBoxOverlap(Bounds{lo, lo + 1.0}, toGrid(m, t, 0, d, kGrid), toGrid(m, t, 1, d, kGrid),
-                            toGrid(m, t, 2, d, kGrid)))
+          if (triBoxOverlap(Bounds{lo, lo + 1.0}, toGrid(m, t, 0, d, kGrid),
+                            toGrid(m, t, 1, d, kGrid), toGrid(m, t, 2, d, kGrid)))
             want.insert({uint64_t(x) + kGrid * (uint64_t(y) + kGrid * uint64_t(z)), t});
         }
   // Cells a triangle only grazes (clipping leaves nothing) may be left out; none may be added.
@@ -62,7 +62,8 @@ TEST(Surfelize, SamplesLieOnTheirTriangleInsideTheirCellNearestTheCentre) {
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   for (const Candidate& c : rasterCandidates(m, d, kGrid, 1)) {
-    const glm::dvec3 cell(double(c.cell % kGrid), double(c.cell / kGrid % kGrid), double(c.cell / (kGrid * kGrid)));
+    const glm::dvec3 cell(double(c.cell % kGrid), double(c.cell / kGrid % kGrid),
+                          double(c.cell / (kGrid * kGrid)));
     const glm::dvec3 s(c.sample);
     for (int k = 0; k < 3; ++k) {
       EXPECT_GE(s[k], cell[k] - 1e-5);
@@ -90,14 +91,15 @@ TEST(Surfelize, SamplesLieOnTheirTriangleInsideTheirCellNearestTheCentre) {
 TEST(Surfelize, CollisionsSplitWhenNormalsDifferAndAverageOtherwise) {
   Mesh m;
   const Rgba8 c = packRgba8(180, 180, 180);
-  m.add({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, c);                  // facing +z
-  m.add({0, 0, 0.001f}, {0, 1, 0.001f}, {1, 0, 0.001f}, c);  // facing -z, a thousandth above
+  m.add({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, c);                     // facing +z
+  m.add({0, 0, 0.001f}, {0, 1, 0.001f}, {1, 0, 0.001f}, c);      // facing -z, a thousandth above
   m.add({0.9f, 0.9f, 0.3f}, {1, 0.9f, 0.3f}, {1, 1, 0.31f}, c);  // moves the sheets off a cell face
   const OctahedralNormals normals(6);
   SurfelizeParams p;
   p.grid = 32;
   std::map<uint64_t, std::set<uint32_t>> byCell;
-  for (const Candidate& x : rasterCandidates(m, Domain::around(m), p.grid, 1)) byCell[x.cell].insert(x.triangle);
+  for (const Candidate& x : rasterCandidates(m, Domain::around(m), p.grid, 1))
+    byCell[x.cell].insert(x.triangle);
   uint64_t both = 0;
   for (const auto& [cell, tris] : byCell) both += tris.count(0) && tris.count(1);
   ASSERT_GT(both, 100u);
@@ -131,7 +133,8 @@ TEST(Surfelize, CollisionsSplitWhenNormalsDifferAndAverageOtherwise) {
 TEST(Surfelize, ShotsFindTheSurfaceCellsOfAConvexObject) {
   const Mesh sphere = uvSphere(32, 16);
   const Domain d = Domain::around(sphere);
-  const double cosWorst = 1.0 / glm::length(glm::dvec3(1.0, std::sqrt(2.0) - 1.0, std::sqrt(3.0) - std::sqrt(2.0)));
+  const double cosWorst =
+      1.0 / glm::length(glm::dvec3(1.0, std::sqrt(2.0) - 1.0, std::sqrt(3.0) - std::sqrt(2.0)));
   const double r2Max = 0.25 - std::pow(0.5 / std::sqrt(2.0) / cosWorst, 2.0);
   EXPECT_NEAR(r2Max, 0.0909, 1e-4);
   for (int grid : {16, 64}) {
