@@ -9,7 +9,7 @@ paper's figures 7-10), every level built before the first frame (--surfel-build 
 set-up time is the preprocessing. Each row: the median frame time (frames after the first), the
 correct rate over covered pixels against the exact reference (minimum and median over frames),
 the surfels drawn, the placements drawn as polygons and as surfels (the per-object switch keeps
-objects whose cells would open holes as polygons), the set-up (surfelization) time, the surfels
+objects whose cells would open holes as polygons) and the surfel placements per grid and sprite, the set-up (surfelization) time, the surfels
 cached and their bytes.
 
 Usage: python3 runs/surfels/run.py [--quick] [--plot-only] [--scenes=a,b] [--configs=a,b] [--no-wait]
@@ -56,7 +56,7 @@ for g in GRIDS:
 FIELDS = ["scene", "triangles", "width", "height", "config", "frames", "median_frame_s",
           "reference", "correct_rate_covered", "median_correct_rate_covered",
           "median_exact_id_rate_covered", "psnr_aa", "surfels_drawn", "placements_polygons",
-          "placements_surfels", "setup_s", "surfelize_s", "surfels_cached", "bytes_per_surfel",
+          "placements_surfels", "grid_placements", "sprite_placements", "setup_s", "surfelize_s", "surfels_cached", "bytes_per_surfel",
           "collector_bytes_per_surfel", "peak_memory_bytes"]
 
 
@@ -65,6 +65,11 @@ def option(name, default):
         if a.startswith(f"--{name}="):
             return a.split("=", 1)[1].split(",")
     return default
+
+
+def histogram(counts):
+    """{"128": 5, "256": 6} as '128:5 256:6' (one CSV field)."""
+    return " ".join(f"{k}:{int(v)}" for k, v in sorted(counts.items(), key=lambda kv: int(kv[0])))
 
 
 def row_of(name, scene, label, n, reference, rep):
@@ -84,6 +89,9 @@ def row_of(name, scene, label, n, reference, rep):
         row.update({"surfels_drawn": counts("surfels_drawn"),
                     "placements_polygons": counts("placements_polygons"),
                     "placements_surfels": counts("placements_surfels"),
+                    # placements per grid and per sprite size on the first measured frame
+                    "grid_placements": histogram(fr[0]["counts"].get("grid_placements", {})),
+                    "sprite_placements": histogram(fr[0]["counts"].get("sprite_placements", {})),
                     "surfelize_s": setup.get("stages", {}).get("surfelize", ""),
                     "surfels_cached": setup.get("counts", {}).get("surfels_cached", ""),
                     "bytes_per_surfel": setup.get("counts", {}).get("bytes_per_surfel", ""),

@@ -226,8 +226,19 @@ void SurfelRenderer::render(const Camera& camera, int frame, const WorkShare& sh
   (void)frame;  // surfels draw no random numbers: every frame's choices follow from its camera
 }
 
+namespace {
+
+// {"value": count, ...} of a histogram.
+nlohmann::json histogram(const std::map<int, uint64_t>& counts) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [value, n] : counts) out[std::to_string(value)] = n;
+  return out;
+}
+
+}  // namespace
+
 void SurfelRenderer::report(const Frame& f, FrameStats& stats) const {
-  std::map<int, uint64_t> byGrid;
+  std::map<int, uint64_t> byGrid, bySprite;
   std::set<uint32_t> surfelObjects, polygonObjects;
   std::map<std::string, std::set<int>> objectGrids;
   uint64_t polygons = 0, drawn = 0;
@@ -240,6 +251,7 @@ void SurfelRenderer::report(const Frame& f, FrameStats& stats) const {
       objectGrids[name].insert(0);
     } else {
       ++byGrid[params_.grids[size_t(p.level)]];
+      ++bySprite[p.sprite];
       surfelObjects.insert(p.node);
       objectGrids[name].insert(params_.grids[size_t(p.level)]);
       drawn += f.work[i];
@@ -250,9 +262,8 @@ void SurfelRenderer::report(const Frame& f, FrameStats& stats) const {
   stats.setShared("placements_surfels", double(f.placements.size() - polygons));
   stats.setShared("objects_polygons", double(polygonObjects.size()));
   stats.setShared("objects_surfels", double(surfelObjects.size()));
-  nlohmann::json grids = nlohmann::json::object();
-  for (const auto& [g, n] : byGrid) grids[std::to_string(g)] = n;
-  stats.shared["grid_placements"] = grids;
+  stats.shared["grid_placements"] = histogram(byGrid);
+  stats.shared["sprite_placements"] = histogram(bySprite);  // the paper's per-object sprite size
   // Per object, the grids its placements used (0: polygons); listed for scenes of few objects.
   constexpr size_t kListedObjects = 32;
   if (objectGrids.size() <= kListedObjects) {

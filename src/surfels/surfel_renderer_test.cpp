@@ -135,6 +135,9 @@ TEST(SurfelRenderer, InstancesShareOneSurfelSetPerObject) {
   render(r, cam, &stats);
   EXPECT_EQ(stats.shared["objects_surfels"], 1.0);  // the one sphere node
   EXPECT_GT(stats.shared["placements_surfels"].get<double>(), 500.0);
+  double sprites = 0.0;  // every surfel placement has one sprite size
+  for (const auto& n : stats.shared["sprite_placements"]) sprites += n.get<double>();
+  EXPECT_EQ(sprites, stats.shared["placements_surfels"].get<double>());
   // One level per grid in use, whatever the number of placements.
   EXPECT_EQ(stats.shared["levels_cached"].get<double>(),
             double(stats.shared["grid_placements"].size()));
