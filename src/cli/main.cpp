@@ -6,6 +6,7 @@
 
 #include "mpi/failure.hpp"
 #include "mpi/group.hpp"
+#include "src/cli/build_tree_command.hpp"
 #include "src/cli/compare_command.hpp"
 #include "src/cli/export_command.hpp"
 #include "src/cli/info_command.hpp"
@@ -45,6 +46,10 @@ int main(int argc, char** argv) {
   lzb::ExportArgs exportArgs;
   addExportOptions(*app.add_subcommand("export", "the fully instanced scene as one binary PLY mesh"),
                    exportArgs);
+  lzb::BuildTreeArgs buildTree;
+  addBuildTreeOptions(*app.add_subcommand("build-tree", "the randomized sample tree of a scene, "
+                                                        "written as a tree store for --method sampletree"),
+                      buildTree);
   lzb::CompareArgs compare;
   addCompareOptions(*app.add_subcommand("compare", "accuracy of image A against reference B (JSON); "
                                                     "with --scene, witnessed by rays as in the report"),
@@ -65,12 +70,13 @@ int main(int argc, char** argv) {
     });
     if (helpShown) return 0;
     if (app.got_subcommand("render")) return runRender(render, g, commandLine);
-    // info, limits, export and compare: work of each rank alone, written by the root.
+    // info, limits, export, build-tree and compare: work of each rank alone, written by the root.
     int status = 0;
     lzb::mpi::agree(g, [&] {
       if (app.got_subcommand("info")) status = runInfo(info, g);
       else if (app.got_subcommand("limits")) status = runLimits(limits, g);
       else if (app.got_subcommand("export")) status = runExport(exportArgs, g);
+      else if (app.got_subcommand("build-tree")) status = runBuildTree(buildTree, g);
       else status = runCompare(compare, g);
     });
     return status;

@@ -239,6 +239,83 @@ void clipAndProject(const glm::dvec3 (&view)[3], double nearDepth, double scale,
   for (int k = 1; k + 1 < n; ++k) out.push_back({s[0], s[k], s[k + 1]});
 }
 
+namespace {
+
+// A pass's fixed geometry: clip depths, the projection and the guard band in pixels.
+struct PassGeometry {
+  int width, height;
+  double nearDepth, farDepth, s, halfWidth, halfHeight, loX, hiX, loY, hiY;
+  PassGeometry(const Camera& camera, int w, int h, double farClip)
+      : width(w),
+        height(h),
+        nearDepth(camera.nearPlane()),
+        farDepth(farClip > 0.0 ? std::min(farClip, camera.farPlane()) : camera.farPlane()),
+        s(camera.pixelsPerUnitAt(1.0)),
+        halfWidth(0.5 * w),
+        halfHeight(0.5 * h),
+        loX(-kGuard),
+        hiX(w + kGuard),
+        loY(-kGuard),
+        hiY(h + kGuard) {}
+};
+
+// Set-up of one view-space triangle into one thread's band bins: clip, snap, bin.
+struct Binner {
+  const PassGeometry& g;
+  std::vector<std::vector<RasterTriangle>>& bins;
+  std::vector<std::array<ScreenVertex, 3>> pieces;
+  uint64_t setUp = 0, clipped = 0;
+
+  void bin(const ScreenVertex (&v)[3], uint64_t id) {
+    // The cheap reject inline, before the call (it drops ~85 % of a PVL's triangles).
+    if (!mayCoverCentre(v, g.width, g.height)) return;
+    RasterTriangle t;
+    if (!setupCandidate(v, id, g.width, g.height, t)) return;
+    ++setUp;
+    for (int b = t.y0 / NativeRasterizer::kBandRows; b <= (t.y1 - 1) / NativeRasterizer::kBandRows; ++b)
+      bins[size_t(b)].push_back(t);
+  }
+  [[gnu::always_inline]] inline void add(const glm::dvec3 (&view)[3], uint64_t id) {
+    int behind = 0, beyond = 0;
+    for (int k = 0; k < 3; ++k) {
+      behind += view[k].z < g.nearDepth;
+      beyond += view[k].z > g.farDepth;
+    }
+    if (behind == 3 || beyond == 3) return;
+    // The common case, wholly in front: project the three vertices without branches between.
+    if (behind == 0) {
+      ScreenVertex sv[3];
+      bool inside = true;
+      for (int k = 0; k < 3; ++k) {
+        sv[k] = project(view[k], g.s, g.halfWidth, g.halfHeight);
+        inside &= sv[k].x >= g.loX && sv[k].x <= g.hiX && sv[k].y >= g.loY && sv[k].y <= g.hiY;
+      }
+      if (inside) {
+        bin(sv, id);
+        return;
+      }
+    }
+    ++clipped;
+    pieces.clear();
+    clipAndProject(view, g.nearDepth, g.s, g.width, g.height, pieces);
+    for (const auto& p : pieces) {
+      const ScreenVertex v[3] = {p[0], p[1], p[2]};
+      bin(v, id);
+    }
+  }
+};
+
+}  // namespace
+
+void NativeRasterizer::clearBins(int threads, int height) {
+  const int bands = (height + kBandRows - 1) / kBandRows;
+  if (bins_.size() < size_t(threads)) bins_.resize(size_t(threads));
+  for (auto& perThread : bins_) {
+    perThread.resize(size_t(bands));
+    for (auto& b : perThread) b.clear();
+  }
+}
+
 void NativeRasterizer::draw(const Scene& scene, const Camera& camera, const DrawLists& lists,
                             std::span<const uint8_t> open, int threads, Framebuffer& fb,
                             double farClip) {
@@ -246,13 +323,7 @@ void NativeRasterizer::draw(const Scene& scene, const Camera& camera, const Draw
     throw std::invalid_argument("NativeRasterizer: open mask and framebuffer sizes differ");
   threads = std::max(threads, 1);
   counts_ = {};
-  const int width = fb.width, height = fb.height;
-  const int bands = (height + kBandRows - 1) / kBandRows;
-  if (bins_.size() < size_t(threads)) bins_.resize(size_t(threads));
-  for (auto& perThread : bins_) {
-    perThread.resize(size_t(bands));
-    for (auto& b : perThread) b.clear();
-  }
+  clearBins(threads, fb.height);
   // Per list: node frame -> camera-relative view coordinates (x right, y up, depth), in double.
   struct ViewTransform {
     glm::dmat3 a;  // columns: images of the node frame's axes
@@ -270,31 +341,17 @@ void NativeRasterizer::draw(const Scene& scene, const Camera& camera, const Draw
   }
   const uint64_t total = first.back();
   counts_.triangles = total;
-  const double nearDepth = camera.nearPlane();
-  const double farDepth = farClip > 0.0 ? std::min(farClip, camera.farPlane()) : camera.farPlane();
-  const double s = camera.pixelsPerUnitAt(1.0);
-  const double halfWidth = 0.5 * width, halfHeight = 0.5 * height;
-  const double loX = -kGuard, hiX = width + kGuard, loY = -kGuard, hiY = height + kGuard;
+  const PassGeometry geometry(camera, fb.width, fb.height, farClip);
   // At least ~8 chunks per thread, so that a short list (the near pass) is shared evenly.
   const uint64_t chunk = std::clamp<uint64_t>(total / (8 * uint64_t(threads)), 256, 2048);
   constexpr size_t kPrefetch = 8;  // triangles ahead
   const long chunks = long((total + chunk - 1) / chunk);
-  uint64_t setUp = 0, clipped = 0, fragments = 0;
+  uint64_t setUp = 0, clipped = 0;
 
   // Set-up: transform, clip, snap, bin to bands (per thread, so no locks).
 #pragma omp parallel num_threads(threads) reduction(+ : setUp, clipped)
   {
-    auto& myBins = bins_[size_t(omp_get_thread_num())];
-    std::vector<std::array<ScreenVertex, 3>> pieces;
-    auto bin = [&](const ScreenVertex(&v)[3], uint64_t id) {
-      // The cheap reject inline, before the call (it drops ~85 % of a PVL's triangles).
-      if (!mayCoverCentre(v, width, height)) return;
-      RasterTriangle t;
-      if (!setupCandidate(v, id, width, height, t)) return;
-      ++setUp;
-      for (int b = t.y0 / kBandRows; b <= (t.y1 - 1) / kBandRows; ++b)
-        myBins[size_t(b)].push_back(t);
-    };
+    Binner binner{geometry, bins_[size_t(omp_get_thread_num())], {}};
 #pragma omp for schedule(dynamic, 1)
     for (long c = 0; c < chunks; ++c) {
       const uint64_t begin = uint64_t(c) * chunk, end = std::min(total, begin + chunk);
@@ -318,41 +375,70 @@ void NativeRasterizer::draw(const Scene& scene, const Camera& camera, const Draw
           const uint32_t tri = tris[i];
           const glm::vec3* corner = pos + 3 * size_t(tri);
           glm::dvec3 view[3];
-          int behind = 0, beyond = 0;
-          for (int k = 0; k < 3; ++k) {
-            view[k] = xf.a * glm::dvec3(corner[k]) + xf.b;
-            behind += view[k].z < nearDepth;
-            beyond += view[k].z > farDepth;
-          }
-          if (behind == 3 || beyond == 3) continue;
-          const uint64_t id = list.idBase + tri;
-          // The common case, wholly in front: project the three vertices without branches between.
-          if (behind == 0) {
-            ScreenVertex sv[3];
-            bool inside = true;
-            for (int k = 0; k < 3; ++k) {
-              sv[k] = project(view[k], s, halfWidth, halfHeight);
-              inside &= sv[k].x >= loX && sv[k].x <= hiX && sv[k].y >= loY && sv[k].y <= hiY;
-            }
-            if (inside) {
-              bin(sv, id);
-              continue;
-            }
-          }
-          ++clipped;
-          pieces.clear();
-          clipAndProject(view, nearDepth, s, width, height, pieces);
-          for (const auto& p : pieces) {
-            const ScreenVertex v[3] = {p[0], p[1], p[2]};
-            bin(v, id);
-          }
+          for (int k = 0; k < 3; ++k) view[k] = xf.a * glm::dvec3(corner[k]) + xf.b;
+          binner.add(view, list.idBase + tri);
         }
       }
     }
+    setUp += binner.setUp;
+    clipped += binner.clipped;
   }
+  counts_.setUp = setUp;
+  counts_.clipped = clipped;
+  counts_.fragments = rasterizeBins(threads, open.empty() ? nullptr : open.data(),
+                                    geometry.farDepth, fb);
+}
 
-  // Rasterization: bands of rows, each written by one thread only.
-  const uint8_t* mask = open.empty() ? nullptr : open.data();
+void NativeRasterizer::drawSoup(const Camera& camera, const TriangleSoup& soup, int threads,
+                                Framebuffer& fb) {
+  threads = std::max(threads, 1);
+  counts_ = {};
+  clearBins(threads, fb.height);
+  std::vector<uint64_t> first(soup.ranges.size() + 1, 0);
+  for (size_t r = 0; r < soup.ranges.size(); ++r)
+    first[r + 1] = first[r] + (soup.ranges[r].end - soup.ranges[r].begin);
+  const uint64_t total = first.back();
+  counts_.triangles = total;
+  const PassGeometry geometry(camera, fb.width, fb.height, 0.0);
+  const glm::dmat3 toView =
+      glm::transpose(glm::dmat3(camera.right(), camera.up(), camera.forward()));
+  const glm::dvec3 eye = camera.position();
+  const uint64_t chunk = std::clamp<uint64_t>(total / (8 * uint64_t(threads)), 256, 2048);
+  const long chunks = long((total + chunk - 1) / chunk);
+  uint64_t setUp = 0, clipped = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : setUp, clipped)
+  {
+    Binner binner{geometry, bins_[size_t(omp_get_thread_num())], {}};
+#pragma omp for schedule(dynamic, 1)
+    for (long c = 0; c < chunks; ++c) {
+      const uint64_t begin = uint64_t(c) * chunk, end = std::min(total, begin + chunk);
+      size_t r = size_t(std::upper_bound(first.begin(), first.end(), begin) - first.begin()) - 1;
+      for (uint64_t g = begin; g < end; g = first[++r]) {
+        const uint64_t base = soup.ranges[r].begin - first[r];
+        const uint64_t iEnd = std::min(end, first[r + 1]);
+        for (uint64_t i = g; i < iEnd; ++i) {
+          const uint64_t tri = base + i;
+          glm::dvec3 view[3];
+          for (int k = 0; k < 3; ++k)
+            view[k] = toView * (glm::dvec3(soup.positions[3 * tri + size_t(k)]) - eye);
+          binner.add(view, soup.ids[tri]);
+        }
+      }
+    }
+    setUp += binner.setUp;
+    clipped += binner.clipped;
+  }
+  counts_.setUp = setUp;
+  counts_.clipped = clipped;
+  counts_.fragments = rasterizeBins(threads, nullptr, geometry.farDepth, fb);
+}
+
+uint64_t NativeRasterizer::rasterizeBins(int threads, const uint8_t* mask, double farDepth,
+                                         Framebuffer& fb) {
+  // Bands of rows, each written by one thread only.
+  const int height = fb.height;
+  const int bands = (height + kBandRows - 1) / kBandRows;
+  uint64_t fragments = 0;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1) reduction(+ : fragments)
   for (int b = 0; b < bands; ++b) {
     const int rowBegin = b * kBandRows, rowEnd = std::min(height, rowBegin + kBandRows);
@@ -360,9 +446,7 @@ void NativeRasterizer::draw(const Scene& scene, const Camera& camera, const Draw
       for (const RasterTriangle& tri : bins_[size_t(t)][size_t(b)])
         fragments += rasterizeTriangle(tri, rowBegin, rowEnd, mask, farDepth, fb);
   }
-  counts_.setUp = setUp;
-  counts_.clipped = clipped;
-  counts_.fragments = fragments;
+  return fragments;
 }
 
 }  // namespace lzb

@@ -77,18 +77,35 @@ struct NativeRasterCounts {
   uint64_t fragments = 0;  // fragments written (passed the depth test; depends on the order)
 };
 
-// Draws draw lists into fb at open pixels. Keeps its per-thread bins between frames.
+// Triangles given by world positions and IDs (the sample tree's nodes, which are no scene node's
+// mesh): triangles [begin, end) of every range, positions 3 per triangle.
+struct SoupRange {
+  uint64_t begin = 0, end = 0;
+};
+struct TriangleSoup {
+  std::span<const glm::vec3> positions;
+  std::span<const uint64_t> ids;
+  std::span<const SoupRange> ranges;
+};
+
+// Draws draw lists (or a triangle soup) into fb at open pixels. Keeps its per-thread bins
+// between frames.
 class NativeRasterizer {
  public:
   // open: one byte per pixel of fb (fb.index order), nonzero where triangles may be drawn; empty:
   // every pixel. Fragments deeper than farClip (0: the camera's far plane) are dropped.
   void draw(const Scene& scene, const Camera& camera, const DrawLists& lists,
             std::span<const uint8_t> open, int threads, Framebuffer& fb, double farClip = 0.0);
+  // The soup's triangles at every pixel, up to the camera's far plane.
+  void drawSoup(const Camera& camera, const TriangleSoup& soup, int threads, Framebuffer& fb);
   const NativeRasterCounts& counts() const { return counts_; }
 
   static constexpr int kBandRows = 16;  // rows per band: the unit of threads in rasterization
 
  private:
+  void clearBins(int threads, int height);
+  uint64_t rasterizeBins(int threads, const uint8_t* mask, double farDepth, Framebuffer& fb);
+
   std::vector<std::vector<std::vector<RasterTriangle>>> bins_;  // [thread][band]
   NativeRasterCounts counts_;
 };

@@ -1,0 +1,26 @@
+#pragma once
+// `lzb build-tree SCENE --out PATH`: builds the randomized sample tree of a scene in memory and
+// writes it as a tree store (src/sampletree/tree_store.hpp) for `lzb render --method sampletree
+// --tree PATH`. Bad input (scene, options, too many triangles) writes nothing.
+#include <cstdint>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "mpi/group.hpp"
+
+namespace lzb {
+
+struct BuildTreeArgs {
+  std::string scene, out;
+  double c = 13.8;
+  uint64_t seed = 1;
+  uint32_t leafTriangles = 32;
+  int threads = 0;
+  bool quiet = false;
+};
+
+void addBuildTreeOptions(CLI::App& command, BuildTreeArgs& args);
+int runBuildTree(const BuildTreeArgs& args, const mpi::Group& g);
+
+}  // namespace lzb

@@ -1,0 +1,98 @@
+#include "src/sampletree/cell_octree.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "src/core/bounds.hpp"
+
+namespace lzb::sampletree {
+
+namespace {
+
+struct Builder {
+  const TriangleInput& in;
+  const std::vector<double>& areas;
+  uint32_t leafTriangles;
+  CellOctree& tree;
+
+  // Which child of a cell centred at `centre` takes triangle t; -1 when t stays in the cell.
+  int childOf(uint32_t t, const glm::dvec3& centre, double childSize) const {
+    const glm::dvec3 a(in.vertex(t, 0)), b(in.vertex(t, 1)), c(in.vertex(t, 2));
+    const glm::dvec3 centroid = (a + b + c) / 3.0;
+    const int o = int(centroid.x >= centre.x) | int(centroid.y >= centre.y) << 1 |
+                  int(centroid.z >= centre.z) << 2;
+    const glm::dvec3 childCentre =
+        centre + 0.5 * childSize * glm::dvec3(o & 1 ? 1 : -1, o & 2 ? 1 : -1, o & 4 ? 1 : -1);
+    const double r2 = 0.75 * childSize * childSize;  // (half diagonal)^2
+    for (const glm::dvec3& v : {a, b, c}) {
+      const glm::dvec3 d = v - childCentre;
+      if (glm::dot(d, d) > r2) return -1;
+    }
+    return o;
+  }
+
+  // Appends the cell (level, cell) holding `tris` and its subtree; returns its index.
+  int32_t build(uint8_t level, const uint32_t (&cell)[3], std::vector<uint32_t>&& tris) {
+    const int32_t index = int32_t(tree.nodes.size());
+    tree.nodes.emplace_back();
+    {
+      BuildNode& n = tree.nodes.back();
+      std::copy(cell, cell + 3, n.cell);
+      n.level = level;
+      n.subtreeTriangles = tris.size();
+      for (uint32_t t : tris) n.subtreeArea += areas[t];
+    }
+    if (tris.size() <= leafTriangles || level == kMaxLevel) {
+      tree.nodes[size_t(index)].own = std::move(tris);
+      return index;
+    }
+    const glm::dvec3 centre = tree.cellCentre(tree.nodes[size_t(index)]);
+    const double childSize = 0.5 * tree.size / double(uint64_t(1) << level);
+    std::array<std::vector<uint32_t>, 8> parts;
+    std::vector<uint32_t> own;
+    for (uint32_t t : tris) {
+      const int o = childOf(t, centre, childSize);
+      (o < 0 ? own : parts[size_t(o)]).push_back(t);
+    }
+    tris = {};
+    tree.nodes[size_t(index)].own = std::move(own);
+    for (int o = 0; o < 8; ++o) {
+      if (parts[size_t(o)].empty()) continue;
+      const uint32_t sub[3] = {2 * cell[0] + uint32_t(o & 1), 2 * cell[1] + uint32_t(o >> 1 & 1),
+                               2 * cell[2] + uint32_t(o >> 2 & 1)};
+      const int32_t c = build(uint8_t(level + 1), sub, std::move(parts[size_t(o)]));
+      tree.nodes[size_t(index)].child[size_t(o)] = c;
+    }
+    return index;
+  }
+};
+
+}  // namespace
+
+bool BuildNode::leaf() const {
+  return std::all_of(child.begin(), child.end(), [](int32_t c) { return c == kNoChild; });
+}
+
+glm::dvec3 CellOctree::cellCentre(const BuildNode& n) const {
+  const double s = cellSize(n);
+  return origin + s * (glm::dvec3(n.cell[0], n.cell[1], n.cell[2]) + 0.5);
+}
+
+CellOctree buildCellOctree(const TriangleInput& in, const std::vector<double>& areas,
+                           uint32_t leafTriangles) {
+  CellOctree tree;
+  if (in.size() == 0) return tree;
+  Bounds b;
+  for (const glm::vec3& p : in.positions) b.extend(glm::dvec3(p));
+  const glm::dvec3 e = b.extent();
+  // A cube a hair larger than the bounds, so every vertex is strictly inside.
+  tree.size = std::max({e.x, e.y, e.z}) * (1.0 + 1e-6) + 1e-30;
+  tree.origin = b.center() - glm::dvec3(0.5 * tree.size);
+  std::vector<uint32_t> all(in.size());
+  for (uint32_t t = 0; t < all.size(); ++t) all[t] = t;
+  const uint32_t root[3] = {0, 0, 0};
+  Builder{in, areas, leafTriangles, tree}.build(0, root, std::move(all));
+  return tree;
+}
+
+}  // namespace lzb::sampletree

@@ -1,0 +1,19 @@
+#pragma once
+// The representative colour of a node (section 4.4): the area-weighted median of its triangles'
+// colours (ordered by luminance, ties by ID), as the paper's implementation takes it. The median is
+// one of the triangles' own colours, so the node keeps that triangle: its ID is what the node's
+// splat writes, and shading from IDs (src/core/shading.hpp) then gives the splat that triangle's
+// colour, lit like the triangle, with no colour channel beside the key buffer.
+#include <cstdint>
+#include <span>
+
+#include "src/sampletree/tree_input.hpp"
+
+namespace lzb::sampletree {
+
+// Index (into `in`) of the triangle whose colour is the area-weighted median of `tris`; tris must
+// not be empty.
+uint32_t medianTriangle(const TriangleInput& in, const std::vector<double>& areas,
+                        std::span<const uint32_t> tris);
+
+}  // namespace lzb::sampletree

@@ -1,0 +1,60 @@
+#include "src/sampletree/sampletree_method.hpp"
+
+#include <filesystem>
+
+#include "src/core/error.hpp"
+#include "src/sampletree/sampletree_renderer.hpp"
+#include "src/sampletree/tree_build.hpp"
+
+namespace lzb {
+
+namespace {
+
+class SampleTreeMethod : public Method {
+ public:
+  std::string name() const override { return "sampletree"; }
+  std::string summary() const override {
+    return "approximate: randomized sample tree (area-drawn triangle samples per octree node, "
+           "far-off splatting)";
+  }
+  void addOptions(CLI::App& app) override {
+    app.add_option("--tree", st_.treePath,
+                   "sampletree: a store written by `lzb build-tree` (default: build in memory)");
+    app.add_option("--c", st_.c,
+                   "sampletree (in-memory build): sample size constant, p = exp(-exp(-c)) per "
+                   "stopping node")
+        ->capture_default_str();
+    addSharedOption(app, "--splat", st_.splat,
+                    "rzb, hybrid: splat size d (d x d pixels; d^2 fewer samples); sampletree: stop "
+                    "at cells of at most d^2 pixels, drawn as d x d splats");
+    app.add_option("--leaf-triangles", st_.leafTriangles,
+                   "sampletree (in-memory build): octree cells with more triangles are split")
+        ->capture_default_str();
+  }
+  void validate() override {
+    require(st_.splat >= 1 && st_.splat <= 64, "--splat",
+            "must be in 1..64, got " + std::to_string(st_.splat));
+    sampletree::validateParams({st_.c, 1, st_.leafTriangles});
+    if (!st_.treePath.empty())
+      require(std::filesystem::is_regular_file(st_.treePath), "--tree",
+              st_.treePath + " is not a file");
+  }
+  nlohmann::json parameters() const override {
+    return {{"tree", st_.treePath.empty() ? "in memory" : st_.treePath},
+            {"c", st_.c},
+            {"splat", st_.splat},
+            {"leaf_triangles", st_.leafTriangles}};
+  }
+  std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const override {
+    return std::make_unique<sampletree::SampleTreeRenderer>(scene, options, st_);
+  }
+
+ private:
+  sampletree::SampleTreeOptions st_;
+};
+
+}  // namespace
+
+std::unique_ptr<Method> makeSampleTreeMethod() { return std::make_unique<SampleTreeMethod>(); }
+
+}  // namespace lzb

@@ -1,0 +1,12 @@
+#pragma once
+// --method sampletree on `lzb render` (the method contract of src/core/method.hpp): --tree,
+// --c, --splat (shared with rzb and the hybrid), --leaf-triangles.
+#include <memory>
+
+#include "src/core/method.hpp"
+
+namespace lzb {
+
+std::unique_ptr<Method> makeSampleTreeMethod();
+
+}  // namespace lzb

@@ -1,0 +1,31 @@
+#pragma once
+// The frame's traversal (sections 4.2 and 4.5): depth first over the nodes in view; every visited
+// node's triangles are drawn, and the traversal stops below a node whose cell projects to at most
+// splat^2 pixels: such a node draws its representative as a splat instead of its triangles.
+#include <cstdint>
+#include <vector>
+
+#include "src/core/camera.hpp"
+#include "src/sampletree/sample_tree.hpp"
+
+namespace lzb::sampletree {
+
+// One node's part of the frame: its triangles, or its splat.
+struct Visit {
+  uint32_t node;
+  bool splat;
+};
+
+struct Traversal {
+  std::vector<Visit> visits;  // preorder
+  uint64_t visited = 0;       // nodes reached in view (drawn, splatted or empty)
+  uint64_t culled = 0;        // subtrees outside the view frustum
+};
+
+// Pixels of the screen rectangle around the projected cell; +inf when a corner is not in front
+// of the near plane (the traversal never stops there).
+double projectedCellPixels(const SampleTree& tree, const TreeNode& node, const Camera& camera);
+
+Traversal traverse(const SampleTree& tree, const Camera& camera, int splat);
+
+}  // namespace lzb::sampletree

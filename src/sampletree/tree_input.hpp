@@ -1,0 +1,34 @@
+#pragma once
+// The triangles a sample tree is built from: the scene's expanded triangles in world space, with
+// instances flattened (this milestone builds in memory; a scene above kMaxInCoreTriangles is
+// refused rather than swapping).
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "src/core/color.hpp"
+#include "src/core/scene.hpp"
+
+namespace lzb::sampletree {
+
+// 2^24 expanded triangles: 48 bytes each in the input, as much again in the tree, and the octree's
+// index lists stay under ~2 GB.
+constexpr uint64_t kMaxInCoreTriangles = uint64_t(1) << 24;
+
+struct TriangleInput {
+  std::vector<glm::vec3> positions;  // world, 3 per triangle
+  std::vector<uint64_t> ids;         // expanded IDs
+  std::vector<Rgba8> colours;
+
+  size_t size() const { return ids.size(); }
+  const glm::vec3& vertex(size_t t, int k) const { return positions[3 * t + size_t(k)]; }
+  double area(size_t t) const;
+  void add(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, uint64_t id, Rgba8 colour);
+};
+
+// Every expanded triangle of the scene in expanded-ID order; throws InputError naming the scene
+// when it has more than `limit` of them.
+TriangleInput gatherTriangles(const Scene& scene, uint64_t limit = kMaxInCoreTriangles);
+
+}  // namespace lzb::sampletree

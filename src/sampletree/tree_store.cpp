@@ -1,0 +1,234 @@
+#include "src/sampletree/tree_store.hpp"
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <vector>
+
+#include "src/core/atomic_file.hpp"
+#include "src/core/error.hpp"
+#include "src/sampletree/crc32c.hpp"
+
+namespace lzb::sampletree {
+
+namespace {
+
+constexpr char kMagic[8] = {'L', 'Z', 'B', 'S', 'T', 'R', 'E', 'E'};
+
+struct Header {
+  char magic[8];
+  uint32_t version;
+  uint32_t blockSize;
+  uint64_t nodes, triangles, sceneTriangles;
+  double c;
+  uint64_t seed;
+  uint32_t leafTriangles;
+  uint32_t reserved0;
+  double origin[3];
+  double size;
+  uint64_t payloadBytes;
+  uint64_t reserved1[2];
+  uint32_t tableCrc;
+  uint32_t headerCrc;  // of the bytes before it
+};
+static_assert(sizeof(Header) == kStoreHeaderBytes, "the header is 128 bytes");
+
+uint64_t payloadBytes(uint64_t nodes, uint64_t triangles) {
+  return nodes * sizeof(TreeNode) + triangles * (3 * sizeof(glm::vec3) + sizeof(uint64_t) + sizeof(Rgba8));
+}
+
+uint64_t blockCount(uint64_t payload) { return (payload + kStoreBlock - 1) / kStoreBlock; }
+
+// Writes the payload in blocks, keeping each block's CRC.
+class BlockWriter {
+ public:
+  explicit BlockWriter(std::ofstream& out) : out_(out) { block_.reserve(kStoreBlock); }
+  void append(const void* data, size_t n) {
+    const auto* p = static_cast<const char*>(data);
+    while (n > 0) {
+      const size_t k = std::min(n, size_t(kStoreBlock) - block_.size());
+      block_.insert(block_.end(), p, p + k);
+      p += k, n -= k;
+      if (block_.size() == kStoreBlock) flush();
+    }
+  }
+  std::vector<uint32_t> finish() {
+    if (!block_.empty()) flush();
+    return std::move(crcs_);
+  }
+
+ private:
+  void flush() {
+    crcs_.push_back(crc32c(block_.data(), block_.size()));
+    out_.write(block_.data(), std::streamsize(block_.size()));
+    block_.clear();
+  }
+  std::ofstream& out_;
+  std::vector<char> block_;
+  std::vector<uint32_t> crcs_;
+};
+
+// Reads the payload block by block, checking each block's CRC before handing out its bytes.
+class BlockReader {
+ public:
+  BlockReader(std::ifstream& in, const std::vector<uint32_t>& crcs, uint64_t payload,
+              const std::string& where)
+      : in_(in), crcs_(crcs), payload_(payload), where_(where) {}
+  void read(void* data, size_t n) {
+    auto* p = static_cast<char*>(data);
+    while (n > 0) {
+      if (pos_ == block_.size()) load();
+      const size_t k = std::min(n, block_.size() - pos_);
+      std::memcpy(p, block_.data() + pos_, k);
+      p += k, n -= k, pos_ += k;
+    }
+  }
+
+ private:
+  void load() {
+    const uint64_t begin = next_ * kStoreBlock;
+    const size_t size = size_t(std::min<uint64_t>(kStoreBlock, payload_ - begin));
+    block_.resize(size);
+    in_.read(block_.data(), std::streamsize(size));
+    require(bool(in_), where_, "block " + std::to_string(next_) + " could not be read (truncated)");
+    require(crc32c(block_.data(), size) == crcs_[size_t(next_)], where_,
+            "block " + std::to_string(next_) + " (payload bytes " + std::to_string(begin) + ".." +
+                std::to_string(begin + size) + ") is corrupted: checksum mismatch");
+    ++next_;
+    pos_ = 0;
+  }
+  std::ifstream& in_;
+  const std::vector<uint32_t>& crcs_;
+  uint64_t payload_;
+  std::string where_;
+  std::vector<char> block_;
+  size_t pos_ = 0;
+  uint64_t next_ = 0;
+};
+
+template <class T>
+void appendArray(BlockWriter& w, const std::vector<T>& v) {
+  w.append(v.data(), v.size() * sizeof(T));
+}
+
+Header makeHeader(const SampleTree& tree) {
+  Header h{};
+  std::memcpy(h.magic, kMagic, sizeof(kMagic));
+  h.version = kStoreVersion;
+  h.blockSize = kStoreBlock;
+  h.nodes = tree.nodes.size();
+  h.triangles = tree.ids.size();
+  h.sceneTriangles = tree.sceneTriangles;
+  h.c = tree.params.c;
+  h.seed = tree.params.seed;
+  h.leafTriangles = tree.params.leafTriangles;
+  for (int k = 0; k < 3; ++k) h.origin[k] = tree.origin[k];
+  h.size = tree.size;
+  h.payloadBytes = payloadBytes(h.nodes, h.triangles);
+  return h;
+}
+
+void writeStoreFile(const SampleTree& tree, const std::filesystem::path& path) {
+  std::ofstream out(path, std::ios::binary);
+  require(bool(out), path.string(), "cannot be created");
+  Header h = makeHeader(tree);
+  out.write(reinterpret_cast<const char*>(&h), sizeof(h));  // rewritten with the CRCs below
+  BlockWriter w(out);
+  appendArray(w, tree.nodes);
+  appendArray(w, tree.positions);
+  appendArray(w, tree.ids);
+  appendArray(w, tree.colours);
+  const std::vector<uint32_t> crcs = w.finish();
+  out.write(reinterpret_cast<const char*>(crcs.data()), std::streamsize(crcs.size() * 4));
+  h.tableCrc = crc32c(crcs.data(), crcs.size() * 4);
+  h.headerCrc = crc32c(&h, offsetof(Header, headerCrc));
+  out.seekp(0);
+  out.write(reinterpret_cast<const char*>(&h), sizeof(h));
+  out.close();
+  require(bool(out), path.string(), "write failed");
+}
+
+Header readHeader(std::ifstream& in, uint64_t fileBytes, const std::string& where) {
+  require(fileBytes >= kStoreHeaderBytes, where,
+          "truncated: " + std::to_string(fileBytes) + " bytes, less than the 128-byte header");
+  Header h;
+  in.read(reinterpret_cast<char*>(&h), sizeof(h));
+  require(bool(in), where, "the header could not be read");
+  require(std::memcmp(h.magic, kMagic, sizeof(kMagic)) == 0, where,
+          "not a sample tree store (no LZBSTREE magic)");
+  require(h.version == kStoreVersion, where,
+          "store format version " + std::to_string(h.version) + ", this lzb reads version " +
+              std::to_string(kStoreVersion) + " (rebuild it with lzb build-tree)");
+  require(crc32c(&h, offsetof(Header, headerCrc)) == h.headerCrc, where,
+          "the header is corrupted: checksum mismatch");
+  require(h.blockSize == kStoreBlock, where, "block size " + std::to_string(h.blockSize) +
+                                                 ", expected " + std::to_string(kStoreBlock));
+  require(h.payloadBytes == payloadBytes(h.nodes, h.triangles), where,
+          "the header's sizes do not agree");
+  const uint64_t expected = kStoreHeaderBytes + h.payloadBytes + 4 * blockCount(h.payloadBytes);
+  require(fileBytes == expected, where,
+          (fileBytes < expected ? "truncated: " : "wrong size: ") + std::to_string(fileBytes) +
+              " bytes, the header says " + std::to_string(expected));
+  return h;
+}
+
+// The nodes fit together: preorder subtrees nest, triangle ranges tile the triangles in order.
+void checkNodes(const SampleTree& t, const std::string& where) {
+  uint64_t next = 0;
+  for (size_t i = 0; i < t.nodes.size(); ++i) {
+    const TreeNode& n = t.nodes[i];
+    const std::string node = "node " + std::to_string(i) + ": ";
+    require(n.subtreeEnd > i && n.subtreeEnd <= t.nodes.size(), where, node + "bad subtree end");
+    require(n.firstTriangle == next && n.triangleCount <= t.ids.size() - next, where,
+            node + "bad triangle range");
+    require(n.level <= 20, where, node + "bad level");
+    next += n.triangleCount;
+  }
+  require(next == t.ids.size(), where, "the nodes do not hold every triangle");
+}
+
+}  // namespace
+
+uint64_t storeBytes(const SampleTree& tree) {
+  const uint64_t payload = payloadBytes(tree.nodes.size(), tree.ids.size());
+  return kStoreHeaderBytes + payload + 4 * blockCount(payload);
+}
+
+void writeTree(const SampleTree& tree, const std::string& path) {
+  writeAtomically(path, [&](const std::filesystem::path& tmp) { writeStoreFile(tree, tmp); });
+}
+
+SampleTree readTree(const std::string& path) {
+  const std::string where = path + " (sample tree store)";
+  std::error_code ec;
+  const uint64_t fileBytes = std::filesystem::file_size(path, ec);
+  require(!ec, where, "cannot be read: " + ec.message());
+  std::ifstream in(path, std::ios::binary);
+  require(bool(in), where, "cannot be opened");
+  const Header h = readHeader(in, fileBytes, where);
+  std::vector<uint32_t> crcs(size_t(blockCount(h.payloadBytes)));
+  in.seekg(std::streamoff(kStoreHeaderBytes + h.payloadBytes));
+  in.read(reinterpret_cast<char*>(crcs.data()), std::streamsize(crcs.size() * 4));
+  require(bool(in), where, "the block table could not be read");
+  require(crc32c(crcs.data(), crcs.size() * 4) == h.tableCrc, where,
+          "the block table is corrupted: checksum mismatch");
+  in.seekg(std::streamoff(kStoreHeaderBytes));
+  SampleTree t;
+  t.params = {h.c, h.seed, h.leafTriangles};
+  t.origin = {h.origin[0], h.origin[1], h.origin[2]};
+  t.size = h.size;
+  t.sceneTriangles = h.sceneTriangles;
+  t.nodes.resize(size_t(h.nodes));
+  t.positions.resize(size_t(3 * h.triangles));
+  t.ids.resize(size_t(h.triangles));
+  t.colours.resize(size_t(h.triangles));
+  BlockReader r(in, crcs, h.payloadBytes, where);
+  r.read(t.nodes.data(), t.nodes.size() * sizeof(TreeNode));
+  r.read(t.positions.data(), t.positions.size() * sizeof(glm::vec3));
+  r.read(t.ids.data(), t.ids.size() * sizeof(uint64_t));
+  r.read(t.colours.data(), t.colours.size() * sizeof(Rgba8));
+  checkNodes(t, where);
+  return t;
+}
+
+}  // namespace lzb::sampletree
