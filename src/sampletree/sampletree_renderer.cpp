@@ -6,6 +6,7 @@
 #include "mpi/decomposition.hpp"
 #include "src/core/error.hpp"
 #include "src/core/timer.hpp"
+#include "src/sampletree/approximated_pixels.hpp"
 #include "src/sampletree/traversal.hpp"
 #include "src/sampletree/tree_build.hpp"
 #include "src/sampletree/tree_store.hpp"
@@ -100,7 +101,11 @@ void SampleTreeRenderer::render(const Camera& camera, int /*frame*/, const WorkS
   raster_.drawSoup(camera, TriangleSoup{tree_.positions, tree_.ids, ranges}, options_.threads, fb);
   stats.addStage("triangles", clock.lap());
 
+  stats.setShared("approximated_pixels",
+                  double(approximatedPixels(tree_, walk.stops, camera, st_.splat)));
+  stats.addStage("approximated", clock.lap());
   stats.setShared("nodes_visited", double(walk.visited));
+  stats.setShared("nodes_stopped", double(walk.stops.size()));
   stats.setShared("subtrees_culled", double(walk.culled));
   stats.setShared("tree_bytes", double(storeBytes(tree_)));
   stats.addCount("nodes_drawn", double(ranges.size()));

@@ -86,7 +86,9 @@ TEST(SampleTreeRenderer, LargerSplatsStopEarlier) {
     const double triangles = r.stats.counts["triangles_drawn"].get<double>();
     EXPECT_LE(triangles, previous) << "splat " << splat;
     previous = triangles;
-    if (splat > 1) EXPECT_GT(r.stats.counts["splats_drawn"].get<double>(), 0.0) << "splat " << splat;
+    if (splat > 1) {
+      EXPECT_GT(r.stats.counts["splats_drawn"].get<double>(), 0.0) << "splat " << splat;
+    }
   }
   EXPECT_LT(previous, double(scene.expandedTriangles()));
 }

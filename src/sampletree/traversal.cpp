@@ -46,6 +46,7 @@ Traversal traverse(const SampleTree& tree, const Camera& camera, int splat) {
     }
     ++out.visited;
     if (projectedCellPixels(tree, node, camera) <= stopPixels) {
+      out.stops.push_back(uint32_t(i));
       if (node.representativeId != kNoId) out.visits.push_back({uint32_t(i), true});
       i = node.subtreeEnd;
       continue;

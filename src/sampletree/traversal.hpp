@@ -18,6 +18,7 @@ struct Visit {
 
 struct Traversal {
   std::vector<Visit> visits;  // preorder
+  std::vector<uint32_t> stops;  // nodes where the traversal stopped (with or without a splat)
   uint64_t visited = 0;       // nodes reached in view (drawn, splatted or empty)
   uint64_t culled = 0;        // subtrees outside the view frustum
 };
