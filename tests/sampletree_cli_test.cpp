@@ -138,6 +138,8 @@ TEST(SampleTreeCli, AccuracyAgainstRaycastOnAScannedMesh) {
   for (int splat = 1; splat <= 5; ++splat)
     expectWithinApproximated(mesh, "--width 96 --height 72 --splat " + std::to_string(splat),
                              "sampletree_bunny_small_" + std::to_string(splat), 0.0);
+  expectWithinApproximated(mesh, "--width 96 --height 72 --stop-draw triangles",
+                           "sampletree_bunny_small_triangles", 0.0);
 }
 
 TEST(SampleTreeCli, AccuracyAgainstRaycastOnASubpixelScene) {
@@ -145,6 +147,8 @@ TEST(SampleTreeCli, AccuracyAgainstRaycastOnASubpixelScene) {
   if (!fs::exists(armadillo)) GTEST_SKIP() << "no armadillo.off (scripts/fetch-test-meshes.sh build/data)";
   expectWithinApproximated("builtin:replicated?mesh=" + armadillo.string() + "&k=4&levels=1",
                            "--width 160 --height 120", "sampletree_field", 0.0);
+  expectWithinApproximated("builtin:replicated?mesh=" + armadillo.string() + "&k=4&levels=1",
+                           "--width 160 --height 120 --stop-draw triangles", "sampletree_field_triangles", 0.0);
 }
 
 }  // namespace

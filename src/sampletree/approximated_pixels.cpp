@@ -43,7 +43,7 @@ void markSphere(const SampleTree& tree, const TreeNode& node, const Camera& came
 
 // The splat's d x d pixels: those whose centres are nearest its projection (splatter.hpp).
 void markSplat(const TreeNode& node, const Camera& camera, int splat, PixelMask& m) {
-  if (node.representativeId == kNoId) return;
+  if (node.representativeId == kNoId || splat == 0) return;
   const glm::dvec3 p = camera.project(glm::dvec3(node.representativePoint[0],
                                                  node.representativePoint[1],
                                                  node.representativePoint[2]));

@@ -14,6 +14,7 @@ namespace lzb::sampletree {
 
 // Pixels of the image inside the screen rectangle of a stopped node's bounding sphere or under
 // its splat, counted once each.
+// splat: the splat size, 0 when stopped nodes draw their triangles instead.
 uint64_t approximatedPixels(const SampleTree& tree, const std::vector<uint32_t>& stops,
                             const Camera& camera, int splat);
 

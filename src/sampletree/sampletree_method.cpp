@@ -27,6 +27,10 @@ class SampleTreeMethod : public Method {
     addSharedOption(app, "--splat", st_.splat,
                     "rzb, hybrid: splat size d (d x d pixels; d^2 fewer samples); sampletree: stop "
                     "at cells of at most d^2 pixels, drawn as d x d splats");
+    app.add_option("--stop-draw", stopDraw_,
+                   "sampletree: what a node where the traversal stops draws: splat (its "
+                   "representative, section 4.5) | triangles (its own triangles, section 4.2)")
+        ->capture_default_str();
     app.add_option("--leaf-triangles", st_.leafTriangles,
                    "sampletree (in-memory build): octree cells with more triangles are split")
         ->capture_default_str();
@@ -34,6 +38,9 @@ class SampleTreeMethod : public Method {
   void validate() override {
     require(st_.splat >= 1 && st_.splat <= 64, "--splat",
             "must be in 1..64, got " + std::to_string(st_.splat));
+    require(stopDraw_ == "splat" || stopDraw_ == "triangles", "--stop-draw",
+            "expected splat or triangles, got '" + stopDraw_ + "'");
+    st_.stopDraw = stopDraw_ == "splat" ? sampletree::StopDraw::kSplat : sampletree::StopDraw::kTriangles;
     sampletree::validateParams({st_.c, 1, st_.leafTriangles});
     if (!st_.treePath.empty())
       require(std::filesystem::is_regular_file(st_.treePath), "--tree",
@@ -43,6 +50,7 @@ class SampleTreeMethod : public Method {
     return {{"tree", st_.treePath.empty() ? "in memory" : st_.treePath},
             {"c", st_.c},
             {"splat", st_.splat},
+            {"stop_draw", stopDraw_},
             {"leaf_triangles", st_.leafTriangles}};
   }
   std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const override {
@@ -51,6 +59,7 @@ class SampleTreeMethod : public Method {
 
  private:
   sampletree::SampleTreeOptions st_;
+  std::string stopDraw_ = "splat";
 };
 
 }  // namespace

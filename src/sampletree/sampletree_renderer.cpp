@@ -64,7 +64,7 @@ std::string SampleTreeRenderer::decomposition() const {
 void SampleTreeRenderer::render(const Camera& camera, int /*frame*/, const WorkShare& share,
                                 Framebuffer& fb, FrameStats& stats) {
   Stopwatch clock;
-  const Traversal walk = traverse(tree_, camera, st_.splat);
+  const Traversal walk = traverse(tree_, camera, st_.splat, st_.stopDraw);
   std::vector<double> costs;
   costs.reserve(walk.visits.size());
   for (const Visit& v : walk.visits)
@@ -102,7 +102,8 @@ void SampleTreeRenderer::render(const Camera& camera, int /*frame*/, const WorkS
   stats.addStage("triangles", clock.lap());
 
   stats.setShared("approximated_pixels",
-                  double(approximatedPixels(tree_, walk.stops, camera, st_.splat)));
+                  double(approximatedPixels(
+                      tree_, walk.stops, camera, st_.stopDraw == StopDraw::kSplat ? st_.splat : 0)));
   stats.addStage("approximated", clock.lap());
   stats.setShared("nodes_visited", double(walk.visited));
   stats.setShared("nodes_stopped", double(walk.stops.size()));

@@ -10,6 +10,7 @@
 #include "src/core/depth_key.hpp"
 #include "src/core/renderer.hpp"
 #include "src/sampletree/sample_tree.hpp"
+#include "src/sampletree/traversal.hpp"
 #include "src/zbuffer/native_raster.hpp"
 
 namespace lzb::sampletree {
@@ -19,6 +20,7 @@ struct SampleTreeOptions {
   double c = 13.8;
   int splat = 1;  // stop at cells of at most splat^2 pixels, drawn as splat x splat splats
   uint32_t leafTriangles = 32;
+  StopDraw stopDraw = StopDraw::kSplat;  // what a stopped node draws
 };
 
 class SampleTreeRenderer : public Renderer {

@@ -75,6 +75,26 @@ TEST(SampleTreeRenderer, FarAwayTheRootIsOneSplat) {
   EXPECT_EQ(r.fb.coveredCount(), 1u);
 }
 
+TEST(SampleTreeRenderer, FarAwayTheRootDrawsItsTrianglesWhenAsked) {
+  const Scene scene = loadScene("builtin:sphereflake?depth=2", true);
+  const Bounds b = scene.bounds();
+  const Camera camera = testing_util::lookAtCamera(b.center() + glm::dvec3(0, 0, 1e4) * b.diagonal(),
+                                                   b.center(), 1.0, 1e6 * b.diagonal(), kW, kH);
+  SampleTreeOptions st;
+  st.stopDraw = StopDraw::kTriangles;
+  RenderOptions options;
+  options.threads = 1;
+  options.seed = 9;
+  SampleTreeRenderer r(scene, options, st);
+  Framebuffer fb(kW, kH);
+  fb.clear();
+  FrameStats stats;
+  r.render(camera, 0, WorkShare{}, fb, stats);
+  EXPECT_EQ(stats.counts["splats_drawn"].get<double>(), 0.0);
+  EXPECT_EQ(stats.counts["triangles_drawn"].get<double>(), double(r.tree().nodes[0].triangleCount));
+  EXPECT_GT(r.tree().nodes[0].triangleCount, 0u);
+}
+
 TEST(SampleTreeRenderer, LargerSplatsStopEarlier) {
   const Scene scene = loadScene("builtin:sphereflake?depth=2", true);
   const Camera camera = nearCamera(scene);

@@ -30,7 +30,7 @@ double projectedCellPixels(const SampleTree& tree, const TreeNode& node, const C
   return (x1 - x0) * (y1 - y0);
 }
 
-Traversal traverse(const SampleTree& tree, const Camera& camera, int splat) {
+Traversal traverse(const SampleTree& tree, const Camera& camera, int splat, StopDraw stopDraw) {
   Traversal out;
   const Frustum frustum = camera.frustum();
   const double stopPixels = double(splat) * double(splat);
@@ -47,7 +47,11 @@ Traversal traverse(const SampleTree& tree, const Camera& camera, int splat) {
     ++out.visited;
     if (projectedCellPixels(tree, node, camera) <= stopPixels) {
       out.stops.push_back(uint32_t(i));
-      if (node.representativeId != kNoId) out.visits.push_back({uint32_t(i), true});
+      if (stopDraw == StopDraw::kTriangles) {
+        if (node.triangleCount > 0) out.visits.push_back({uint32_t(i), false});
+      } else if (node.representativeId != kNoId) {
+        out.visits.push_back({uint32_t(i), true});
+      }
       i = node.subtreeEnd;
       continue;
     }

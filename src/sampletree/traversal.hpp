@@ -1,7 +1,8 @@
 #pragma once
 // The frame's traversal (sections 4.2 and 4.5): depth first over the nodes in view; every visited
 // node's triangles are drawn, and the traversal stops below a node whose cell projects to at most
-// splat^2 pixels: such a node draws its representative as a splat instead of its triangles.
+// splat^2 pixels: such a node draws its representative as a splat instead of its triangles (or,
+// with StopDraw::kTriangles, its own triangles as in section 4.2, without its subtree's).
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +28,11 @@ struct Traversal {
 // of the near plane (the traversal never stops there).
 double projectedCellPixels(const SampleTree& tree, const TreeNode& node, const Camera& camera);
 
-Traversal traverse(const SampleTree& tree, const Camera& camera, int splat);
+// stopDraw: what a stopped node draws (section 4.5's splat of its representative, or section
+// 4.2's own triangles).
+enum class StopDraw { kSplat, kTriangles };
+
+Traversal traverse(const SampleTree& tree, const Camera& camera, int splat,
+                   StopDraw stopDraw = StopDraw::kSplat);
 
 }  // namespace lzb::sampletree
