@@ -99,12 +99,22 @@ TEST(SampleTreeCli, DamagedStoresAreRefused) {
 TEST(SampleTreeCli, BuildTreeRefusesBadInputAndWritesNothing) {
   const fs::path dir = freshDir("sampletree_build_bad");
   const fs::path store = dir / "tree.lzbtree";
+  // The last: 2^25 expanded triangles, above the in-core limit of this milestone.
   for (const std::string& args : {std::string("build-tree builtin:teapot"), "build-tree " + kScene + " --c -1",
-                                  "build-tree " + kScene + " --leaf-triangles 0"}) {
+                                  "build-tree " + kScene + " --leaf-triangles 0",
+                                  std::string("build-tree 'builtin:chessboard?n=4096'")}) {
     const RunResult r = runLzb(args + " --out " + store.string() + " --quiet");
     EXPECT_EQ(r.status, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find("error"), std::string::npos) << args << ": " << r.output;
     EXPECT_FALSE(fs::exists(store)) << args;
+    EXPECT_TRUE(fs::is_empty(dir)) << args;
   }
+  // Rendering such a scene without a store refuses it too, before any output.
+  const RunResult r = runLzb("render 'builtin:chessboard?n=4096' --method sampletree --quiet --out " +
+                             (dir / "out").string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("in memory"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "out"));
 }
 
 // Where a frame may be wrong: only around the nodes where the traversal stopped (every other
