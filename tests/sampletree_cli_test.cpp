@@ -60,6 +60,7 @@ TEST(SampleTreeCli, StoredTreeRendersLikeTheTreeBuiltInMemory) {
   EXPECT_GT(frame["counts"]["splats_drawn"].get<double>(), 0.0);
   EXPECT_EQ(rep["setup"]["counts"]["tree_bytes"].get<double>(), double(fs::file_size(store)))
       << rep["setup"].dump();
+  EXPECT_EQ(rep["setup"]["counts"]["tree_seed"].get<double>(), 4.0) << "the store's seed, not --seed";
 }
 
 // Damage of every kind: exit status 2, the store named, no output folder.

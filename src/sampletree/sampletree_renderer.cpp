@@ -49,6 +49,9 @@ SampleTreeRenderer::SampleTreeRenderer(const Scene& scene, const RenderOptions& 
                 std::to_string(scene.expandedTriangles()));
     setup_.addStage("read_tree", clock.lap());
   }
+  // The construction's own c and seed: a store's, whatever --c and --seed say.
+  setup_.setShared("tree_c", tree_.params.c);
+  setup_.setShared("tree_seed", double(tree_.params.seed));
   setup_.setShared("tree_nodes", double(tree_.nodes.size()));
   setup_.setShared("tree_triangles", double(tree_.triangles()));
   setup_.setShared("tree_bytes", double(storeBytes(tree_)));

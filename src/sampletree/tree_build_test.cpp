@@ -129,6 +129,26 @@ TEST(TreeBuild, SmallTrianglesOnCellBordersSinkToLeaves) {
   EXPECT_EQ(tree.ids[tree.nodes[0].firstTriangle], 200u);
 }
 
+// Preorder with children in octant order: a subtree is one run of nodes inside its cell, and the
+// children of a node come in Morton order, so neighbouring cells' nodes lie together.
+TEST(TreeBuild, NodesAreLaidOutInPreorderByCell) {
+  const SampleTree tree = scatteredTree();
+  ASSERT_EQ(tree.nodes[0].subtreeEnd, tree.nodes.size());
+  for (size_t i = 0; i < tree.nodes.size(); ++i) {
+    const TreeNode& u = tree.nodes[i];
+    int lastOctant = -1;
+    for (size_t j = i + 1; j < u.subtreeEnd; j = tree.nodes[j].subtreeEnd) {
+      const TreeNode& d = tree.nodes[j];
+      ASSERT_EQ(d.level, u.level + 1) << "node " << j << " is not a child of " << i;
+      for (int k = 0; k < 3; ++k) ASSERT_EQ(d.cell[k] >> 1, u.cell[k]) << "child " << j << " of " << i;
+      const int octant = int(d.cell[0] & 1) | int(d.cell[1] & 1) << 1 | int(d.cell[2] & 1) << 2;
+      ASSERT_GT(octant, lastOctant) << "children of " << i << " out of octant order";
+      lastOctant = octant;
+      ASSERT_LE(d.subtreeEnd, u.subtreeEnd);
+    }
+  }
+}
+
 TEST(TreeBuild, SameTreeOnOneAndTwoThreads) {
   const SampleTree a = scatteredTree(13.8, 1), b = scatteredTree(13.8, 2);
   ASSERT_EQ(a.nodes.size(), b.nodes.size());

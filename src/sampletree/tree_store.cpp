@@ -1,5 +1,6 @@
 #include "src/sampletree/tree_store.hpp"
 
+#include <cstddef>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
