@@ -24,9 +24,11 @@ class SampleTreeMethod : public Method {
                    "sampletree (in-memory build): sample size constant, p = exp(-exp(-c)) per "
                    "stopping node")
         ->capture_default_str();
+    // rzb adds --splat first (the help shows its text, which names the sample tree too).
     addSharedOption(app, "--splat", st_.splat,
-                    "rzb, hybrid: splat size d (d x d pixels; d^2 fewer samples); sampletree: stop "
-                    "at cells of at most d^2 pixels, drawn as d x d splats");
+                    "rzb, hybrid: splat size d (d x d pixels; d^2 fewer samples); surfels: the "
+                    "largest sprite; sampletree: stop at cells of at most d^2 pixels, drawn as d x d "
+                    "splats");
     app.add_option("--stop-draw", stopDraw_,
                    "sampletree: what a node where the traversal stops draws: splat (its "
                    "representative, section 4.5) | triangles (its own triangles, section 4.2)")
