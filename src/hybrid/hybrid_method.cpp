@@ -21,7 +21,8 @@ class HybridMethod : public Method {
                     "rzb, hybrid: scales the ln(pixels) samples per pixel of projected area");
     addSharedOption(c, "--splat", params_.splat,
                     "rzb, hybrid: splat size d (d x d pixels; d^2 fewer samples); surfels: the "
-                    "largest sprite");
+                    "largest sprite; sampletree: stop at cells of at most d^2 pixels, drawn as d x d "
+                    "splats");
     addSharedOption(c, "--fallback", fallback_,
                     "rzb, hybrid: boxes (hybrid: octree leaves) whose triangles project above this "
                     "many pixels are drawn exactly (rzb: z-buffer; hybrid: lazy ray casting + "

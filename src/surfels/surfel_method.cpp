@@ -30,7 +30,8 @@ class SurfelMethod : public Method {
         ->capture_default_str();
     addSharedOption(c, "--splat", t_.splat,
                     "rzb, hybrid: splat size d (d x d pixels; d^2 fewer samples); surfels: the "
-                    "largest sprite");
+                    "largest sprite; sampletree: stop at cells of at most d^2 pixels, drawn as d x d "
+                    "splats");
     c.add_option("--sprite-shape", t_.shape, "surfels: square | disc sprites")
         ->capture_default_str();
     c.add_option("--surfel-cell", t_.cell,
