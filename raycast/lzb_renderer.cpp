@@ -229,53 +229,51 @@ void LzbRenderer::castFarRays(Frame& f) {
   for (auto& p : tilePixels) last_.castPixels.insert(last_.castPixels.end(), p.begin(), p.end());
 }
 
-void LzbRenderer::castNaiveRays(Frame& f, const TileCastInput& input,
-                                std::vector<std::vector<uint32_t>>& tilePixels) {
-  const Camera& camera = *f.camera;
-  const ScreenTiles tiles(camera.width(), camera.height());
+template <typename CastTile>
+void LzbRenderer::forOwnedTiles(Frame& f, std::vector<std::vector<uint32_t>>& tilePixels,
+                                CastTile castTile) {
+  const ScreenTiles tiles(f.camera->width(), f.camera->height());
   const long count = long(tilePixels.size());
-  farPass_.resize(camera.width(), camera.height());  // and clears
-  f.farApart = true;
 #pragma omp parallel num_threads(options_.threads)
   {
     TileScratch scratch;
     TileCastCounts local;
+    const size_t thread = size_t(omp_get_thread_num());
 #pragma omp for schedule(dynamic, 1)
     for (long k = 0; k < count; ++k) {
       const int t = f.tiles[size_t(k)];
-      castTileEmbree(*embree_, tiles.tile(t), t, input, scratch, farPass_, local,
-                     &tilePixels[size_t(k)]);
+      castTile(thread, tiles.tile(t), t, size_t(k), scratch, local, &tilePixels[size_t(k)]);
     }
 #pragma omp critical
     f.tileCounts.add(local);
   }
+}
+
+void LzbRenderer::castNaiveRays(Frame& f, const TileCastInput& input,
+                                std::vector<std::vector<uint32_t>>& tilePixels) {
+  farPass_.resize(f.camera->width(), f.camera->height());  // and clears
+  f.farApart = true;
+  forOwnedTiles(f, tilePixels,
+                [&](size_t, const TileRect& r, int t, size_t, TileScratch& scratch,
+                    TileCastCounts& local, std::vector<uint32_t>* cast) {
+                  castTileEmbree(*embree_, r, t, input, scratch, farPass_, local, cast);
+                });
   last_.pvl = {};
 }
 
 void LzbRenderer::findPvlByWalk(Frame& f, const TileCastInput& input,
                                 std::vector<std::vector<uint32_t>>& tilePixels) {
   const Camera& camera = *f.camera;
-  const ScreenTiles tiles(camera.width(), camera.height());
-  const long count = long(tilePixels.size());
   for (RayWalker& w : walkers_) {
     w.setPixelScale(camera.pixelsPerUnitAt(1.0));
     w.setLeafFilter(f.leafFilter, camera.position(), camera.forward());
   }
-#pragma omp parallel num_threads(options_.threads)
-  {
-    TileScratch scratch;
-    TileCastCounts local;
-    RayWalker& walker = walkers_[size_t(omp_get_thread_num())];
-#pragma omp for schedule(dynamic, 1)
-    for (long k = 0; k < count; ++k) {
-      const int t = f.tiles[size_t(k)];
-      castTilePvl(walker, tiles.tile(t), t, input, scratch, parts_[size_t(k)], local,
-                  &tilePixels[size_t(k)]);
-      parts_[size_t(k)].finish();
-    }
-#pragma omp critical
-    f.tileCounts.add(local);
-  }
+  forOwnedTiles(f, tilePixels,
+                [&](size_t thread, const TileRect& r, int t, size_t k, TileScratch& scratch,
+                    TileCastCounts& local, std::vector<uint32_t>* cast) {
+                  castTilePvl(walkers_[thread], r, t, input, scratch, parts_[k], local, cast);
+                  parts_[k].finish();
+                });
   for (RayWalker& w : walkers_) {
     last_.walk.add(w.counts);
     w.counts = {};
@@ -284,25 +282,14 @@ void LzbRenderer::findPvlByWalk(Frame& f, const TileCastInput& input,
 
 void LzbRenderer::findPvlByEmbree(Frame& f, const TileCastInput& input,
                                   std::vector<std::vector<uint32_t>>& tilePixels) {
-  const Camera& camera = *f.camera;
-  const ScreenTiles tiles(camera.width(), camera.height());
-  const long count = long(tilePixels.size());
-  for (HitLeafRecorder& r : recorders_) r.setPixelScale(camera.pixelsPerUnitAt(1.0));
-#pragma omp parallel num_threads(options_.threads)
-  {
-    TileScratch scratch;
-    TileCastCounts local;
-    HitLeafRecorder& recorder = recorders_[size_t(omp_get_thread_num())];
-#pragma omp for schedule(dynamic, 1)
-    for (long k = 0; k < count; ++k) {
-      const int t = f.tiles[size_t(k)];
-      castTileHits(*embree_, recorder, tiles.tile(t), t, input, scratch, parts_[size_t(k)], local,
-                   &tilePixels[size_t(k)]);
-      parts_[size_t(k)].finish();
-    }
-#pragma omp critical
-    f.tileCounts.add(local);
-  }
+  for (HitLeafRecorder& r : recorders_) r.setPixelScale(f.camera->pixelsPerUnitAt(1.0));
+  forOwnedTiles(f, tilePixels,
+                [&](size_t thread, const TileRect& r, int t, size_t k, TileScratch& scratch,
+                    TileCastCounts& local, std::vector<uint32_t>* cast) {
+                  castTileHits(*embree_, recorders_[thread], r, t, input, scratch, parts_[k],
+                               local, cast);
+                  parts_[k].finish();
+                });
   for (HitLeafRecorder& r : recorders_) {
     last_.hitLeaves.add(r.counts);
     r.counts = {};

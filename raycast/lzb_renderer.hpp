@@ -112,6 +112,10 @@ class LzbRenderer : public Renderer {
  private:
   void measureDepthComplexity(const Camera& camera, FrameStats& stats);
   // castFarRays by engine, each filling tilePixels (per owned tile: the pixels cast).
+  // Runs castTile(thread, rect, tile, k, scratch, counts, cast pixels) on this rank's k-th
+  // owned tile, over the frame's threads, and sums the tiles' counts into f.tileCounts.
+  template <typename CastTile>
+  void forOwnedTiles(Frame& f, std::vector<std::vector<uint32_t>>& tilePixels, CastTile castTile);
   void castNaiveRays(Frame& f, const TileCastInput& input,
                      std::vector<std::vector<uint32_t>>& tilePixels);
   void findPvlByWalk(Frame& f, const TileCastInput& input,
