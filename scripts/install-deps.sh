@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages lzb builds and runs with; idempotent, quiet when all are present.
 # --test adds what the tests fetch their real meshes from (libcgal-demo, assimp-testmodels);
-# --bench adds gnuplot for the benchmark plots.
+# --bench adds gnuplot for the benchmark plots; --fuzz adds clang 14 with libFuzzer and the
+# sanitizer runtimes (scripts/fuzz.sh). The ASan + UBSan build (scripts/sanitize.sh) needs only
+# g++'s own runtimes, which build-essential brings.
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
@@ -14,6 +16,7 @@ for arg in "$@"; do
   case "$arg" in
     --test) packages+=(libcgal-demo assimp-testmodels) ;;
     --bench) packages+=(gnuplot-nox libcgal-demo) ;;
+    --fuzz) packages+=(clang-14 libclang-rt-14-dev libomp-14-dev) ;;
     *) echo "install-deps: unknown option $arg" >&2; exit 2 ;;
   esac
 done

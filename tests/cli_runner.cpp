@@ -8,9 +8,9 @@
 
 namespace lzb::test {
 
-RunResult runLzb(const std::string& args) {
+RunResult runLzb(const std::string& args, const std::string& shellPrefix) {
   RunResult r;
-  const std::string cmd = std::string(LZB_BINARY) + " " + args + " 2>&1";
+  const std::string cmd = shellPrefix + std::string(LZB_BINARY) + " " + args + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
   std::array<char, 4096> buf;

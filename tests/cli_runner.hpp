@@ -12,8 +12,9 @@ struct RunResult {
   std::string output;  // stdout and stderr together
 };
 
-// Runs `lzb ARGS` through the shell; ARGS is pasted as is (quote what needs quoting).
-RunResult runLzb(const std::string& args);
+// Runs `lzb ARGS` through the shell; ARGS is pasted as is (quote what needs quoting), after
+// `shellPrefix` (e.g. "ulimit -v 3000000; ").
+RunResult runLzb(const std::string& args, const std::string& shellPrefix = "");
 // A fresh, empty folder under the test work dir.
 std::filesystem::path freshDir(const std::string& name);
 nlohmann::json readJson(const std::filesystem::path& file);

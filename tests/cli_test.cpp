@@ -1,6 +1,7 @@
 // The lzb program end to end: exact references agree, reports are complete, bad input is refused.
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <utility>
 
@@ -312,36 +313,88 @@ TEST(Export, WritesTheExpandedSceneAsAMeshThatRendersTheSame) {
 // Bad input: a clear message naming what is wrong, exit status 2, and no output written.
 struct BadCase {
   std::string name, args, mustMention;
+  std::string shellPrefix = "";  // e.g. a ulimit for the run
 };
-void PrintTo(const BadCase& c, std::ostream* os) { *os << c.args; }
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.shellPrefix << c.args; }
+
+// A chain of `n` TOML nodes over one sphere, c0 -> c1 -> ... -> one.
+std::string chainToml(int n) {
+  std::string s = "root = \"c0\"\n[[generators]]\nname = \"one\"\nspec = \"sphereflake?depth=0\"\n";
+  for (int k = 0; k < n; ++k)
+    s += "[[nodes]]\nname = \"c" + std::to_string(k) + "\"\ninstances = [{ node = \"" +
+         (k + 1 < n ? "c" + std::to_string(k + 1) : std::string("one")) + "\" }]\n";
+  return s;
+}
+
+// Each level instances the one below 10 times: 10^30 triangles at the root.
+std::string hugeToml() {
+  std::string s = "root = \"l29\"\n[[generators]]\nname = \"one\"\nspec = \"sphereflake?depth=0\"\n";
+  for (int k = 0; k < 30; ++k) {
+    s += "[[nodes]]\nname = \"l" + std::to_string(k) + "\"\ninstances = [";
+    for (int i = 0; i < 10; ++i)
+      s += std::string(i ? ", " : "") + "{ node = \"" + (k ? "l" + std::to_string(k - 1) : "one") + "\" }";
+    s += "]\n";
+  }
+  return s;
+}
+
+// The input files the cases name (written only when a case names them).
+const std::vector<std::pair<std::string, std::function<std::string()>>>& badFiles() {
+  static const std::vector<std::pair<std::string, std::function<std::string()>>> files = {
+      {"malformed.obj", [] { return "v 0 0 0\nv 1 0 0\nf 1 2 9\nthis is not obj\n"; }},
+      {"truncated.ply",
+       [] {
+         return "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+                "end_header\n0 0 0\n1 0";
+       }},
+      {"nan.off", [] { return "OFF\n3 1 0\nnan 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"; }},
+      {"degenerate.off", [] { return "OFF\n3 1 0\n0 0 0\n1 1 1\n2 2 2\n3 0 1 2\n"; }},
+      {"face.off", [] { return "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n18446744073709551615 0 1 2\n"; }},
+      {"empty.obj", [] { return "# nothing\n"; }},
+      {"bad.toml", [] { return "[camera]\nposition = [0, 0, 5]\nnear = -1\n[[mesh]]\nname = 3\n"; }},
+      {"tall.toml",
+       [] {
+         return "root = \"flake\"\n[image]\nwidth = 64\nheight = 5000\n[[generators]]\n"
+                "name = \"flake\"\nspec = \"sphereflake?depth=1\"\n";
+       }},
+      {"vast.toml",
+       [] {
+         return "root = \"flake\"\n[image]\nwidth = 16384\nheight = 16384\n[[generators]]\n"
+                "name = \"flake\"\nspec = \"sphereflake?depth=1\"\n";
+       }},
+      {"chain.toml", [] { return chainToml(100000); }},
+      {"self.toml",
+       [] {
+         return "root = \"me\"\n[[generators]]\nname = \"one\"\nspec = \"sphereflake?depth=0\"\n"
+                "[[nodes]]\nname = \"me\"\ninstances = [{ node = \"one\" }, { node = \"me\" }]\n";
+       }},
+      {"huge.toml", hugeToml},
+  };
+  return files;
+}
 
 class BadInput : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(BadInput, ExitsWithStatus2AndWritesNothing) {
   const BadCase& c = GetParam();
+#ifdef LZB_SANITIZE
+  if (c.shellPrefix.find("ulimit -v") != std::string::npos)
+    GTEST_SKIP() << "AddressSanitizer reserves terabytes of address space: ulimit -v cannot apply";
+#endif
   const fs::path dir = freshDir("bad_" + c.name);
-  // Input files the cases refer to.
-  std::ofstream(dir / "malformed.obj") << "v 0 0 0\nv 1 0 0\nf 1 2 9\nthis is not obj\n";
-  std::ofstream(dir / "truncated.ply") << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n"
-                                          "property float y\nproperty float z\nelement face 1\n"
-                                          "property list uchar int vertex_indices\nend_header\n0 0 0\n1 0";
-  std::ofstream(dir / "nan.off") << "OFF\n3 1 0\nnan 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-  std::ofstream(dir / "degenerate.off") << "OFF\n3 1 0\n0 0 0\n1 1 1\n2 2 2\n3 0 1 2\n";
-  std::ofstream(dir / "empty.obj") << "# nothing\n";
-  std::ofstream(dir / "bad.toml") << "[camera]\nposition = [0, 0, 5]\nnear = -1\n[[mesh]]\nname = 3\n";
-  std::ofstream(dir / "tall.toml") << "root = \"flake\"\n[image]\nwidth = 64\nheight = 5000\n"
-                                      "[[generators]]\nname = \"flake\"\nspec = \"sphereflake?depth=1\"\n";
   std::string args = c.args;
+  for (const auto& [name, text] : badFiles())
+    if (args.find("DIR/" + name) != std::string::npos) std::ofstream(dir / name) << text();
   for (size_t p; (p = args.find("DIR")) != std::string::npos;) args.replace(p, 3, dir.string());
   const fs::path out = dir / "out";
   if (args.find("--out") == std::string::npos) args += " --out " + out.string();
-  const RunResult r = runLzb(args + " --quiet");
+  const RunResult r = runLzb(args + " --quiet", c.shellPrefix);
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find(c.mustMention), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("error"), std::string::npos) << r.output;
-  if (fs::exists(out)) {
-    EXPECT_TRUE(fs::is_empty(out)) << "partial output left in " << out;
-  }
+  // Not even the folder: --out is created only after the scene and every option passed.
+  EXPECT_FALSE(fs::exists(out)) << "output left in " << out;
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -390,6 +443,24 @@ INSTANTIATE_TEST_SUITE_P(
                 "--budget-rate"},
         BadCase{"surfelize", "render builtin:sphereflake --method surfels --surfelize voxels",
                 "--surfelize"}),
+        // The scene graph: 100,000 chained nodes, a node instancing itself, 10^30 triangles.
+        BadCase{"chain_100000", "render DIR/chain.toml", "deeper than 64 levels"},
+        BadCase{"self_instance", "render DIR/self.toml", "instancing cycle: me -> me"},
+        BadCase{"expands_to_1e30", "render DIR/huge.toml", "more than 2^62 triangles"},
+        // Counts in headers that used to wrap.
+        BadCase{"off_face_size_2_64", "render DIR/face.off", "face.off"},
+        // Resources, checked before anything is allocated.
+        BadCase{"cache_mb_not_an_integer", "render builtin:sphereflake --method rzb --cache-mb 1e300",
+                "--cache-mb: must be 0 (no cache) or a budget in MiB up to 2^40, got 1e+300"},
+        BadCase{"cache_mb_beyond_memory", "render builtin:sphereflake --method rzb --cache-mb 1e9",
+                "--cache-mb: a sample cache needs 1000000000 MiB"},
+        BadCase{"frame_beyond_ulimit", "render builtin:sphereflake --width 16384 --height 16384",
+                "--width/--height: a 16384x16384 frame needs 4096 MiB", "ulimit -v 3000000; "},
+        BadCase{"frame_of_scene_file_beyond_ulimit", "render DIR/vast.toml", "image size: a 16384x16384",
+                "ulimit -v 3000000; "},
+        BadCase{"reference_beyond_ulimit",
+                "render builtin:sphereflake --reference raycast --width 2048 --height 2048",
+                "with its --reference needs", "ulimit -v 1000000; "}),
     [](const auto& info) { return info.param.name; });
 
 }  // namespace

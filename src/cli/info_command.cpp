@@ -80,6 +80,7 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   std::printf("triangles:  %llu unique, %llu expanded (%llu nodes, %llu instances)\n",
               (unsigned long long)scene.uniqueTriangles(), (unsigned long long)scene.expandedTriangles(),
               (unsigned long long)scene.nodes.size(), (unsigned long long)info["instances"].get<uint64_t>());
+  std::printf("nesting:    %d instance levels (at most %d)\n", scene.instanceDepth, kMaxInstanceDepth);
   std::printf("dropped:    %llu degenerate, %llu non-finite\n", (unsigned long long)scene.stats.degenerate,
               (unsigned long long)scene.stats.nonFinite);
   std::printf("bounds:     [%g, %g, %g] - [%g, %g, %g]\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);

@@ -82,11 +82,34 @@ void checkSubsampleSizes(const RenderArgs& a, int width, int height) {
   if (a.subsamples) checkSubsampleSize(width, height, "--subsamples");
 }
 
+// Bytes every rank holds for one width x height frame, at least (the renderer's own buffers come
+// on top): the frame (depth 4 + colour 4 + ID 8 bytes a pixel); with --subsamples its 4 x 4
+// sub-sample render (16 x 16 bytes a pixel) while it is reduced to the frame's ReferenceFrame
+// (centre ID 8 + 16 IDs x 8 + box colour 12 bytes), which is kept; with --reference the
+// reference's centre render (16), sub-sample render (256) and reduction (148), all at once.
+uint64_t frameBytes(const RenderArgs& a, int width, int height) {
+  constexpr uint64_t kFrame = 16, kFine = 16 * 16, kReduced = 8 + 16 * 8 + 12;
+  uint64_t perPixel = kFrame;
+  if (a.subsamples) perPixel += kReduced;
+  if (!a.reference.empty()) perPixel += kFrame + kFine + kReduced;
+  else if (a.subsamples) perPixel += kFine;
+  return perPixel * uint64_t(width) * uint64_t(height);
+}
+
+// Refuses, before any allocation, a frame this process cannot hold.
+void checkFrameMemory(const RenderArgs& a, int width, int height) {
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  requireMemory(frameBytes(a, width, height), a.width || a.height ? "--width/--height" : "image size",
+                "a " + size + " frame" + (a.reference.empty() ? "" : " with its --reference") +
+                    (a.subsamples ? " and --subsamples" : ""));
+}
+
 void validate(const RenderArgs& a) {
   methodNamed(a.method, "--method").validate();
   if (!a.reference.empty()) exactMethodNamed(a.reference, "--reference");
   if (a.subsamples) exactMethodNamed(a.method, "--subsamples");
   checkSubsampleSizes(a, a.width, a.height);
+  if (a.width && a.height) checkFrameMemory(a, a.width, a.height);
   require(a.threads >= 0 && a.threads <= 1024, "--threads", "must be in [0, 1024]");
   require(a.frames >= 1 && a.frames <= 1000000, "--frames", "must be in [1, 1000000]");
   mpi::parseCompositeStrategy(a.composite, "--composite");
@@ -247,6 +270,7 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
     // Validate the first camera and the sub-sample size before any rendering work starts.
     Camera(withClipPlanes(base, scene.bounds()), width, height, "camera");
     checkSubsampleSizes(a, width, height);
+    checkFrameMemory(a, width, height);
 
     Stopwatch setupClock;
     renderer = methodNamed(a.method, "--method").create(scene, options);

@@ -27,6 +27,7 @@ nlohmann::json sceneSummary(const Scene& scene) {
           {"triangles_unique", scene.uniqueTriangles()},
           {"triangles_expanded", scene.expandedTriangles()},
           {"nodes", scene.nodes.size()},
+          {"instance_depth", scene.instanceDepth},
           {"dropped_degenerate", scene.stats.degenerate},
           {"dropped_nonfinite", scene.stats.nonFinite},
           {"bounds", {{"min", vec(scene.bounds().lo)}, {"max", vec(scene.bounds().hi)}}}};

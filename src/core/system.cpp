@@ -3,10 +3,16 @@
 #include <sched.h>
 #include <sys/resource.h>
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstdlib>
+#include <fstream>
 #include <string>
 
 #include <omp.h>
+
+#include "src/core/error.hpp"
 
 namespace lzb {
 
@@ -26,6 +32,42 @@ void useThreads(int threads) {
   omp_set_num_threads(threads);
   // llvmpipe reads this when its screen is created; keeps ranks from oversubscribing cores.
   setenv("LP_NUM_THREADS", std::to_string(threads).c_str(), 1);
+}
+
+namespace {
+
+uint64_t physicalMemoryBytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+  return pages > 0 && size > 0 ? uint64_t(pages) * uint64_t(size) : ~uint64_t(0);
+}
+
+// Address space mapped now (VmSize in /proc/self/status), 0 when unknown.
+uint64_t mappedBytes() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("VmSize:", 0) == 0) return std::strtoull(line.c_str() + 7, nullptr, 10) * 1024;
+  return 0;
+}
+
+// What RLIMIT_AS leaves of the address space (unlimited: all of it).
+uint64_t addressSpaceLeft() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return ~uint64_t(0);
+  const uint64_t mapped = mappedBytes();
+  return uint64_t(limit.rlim_cur) > mapped ? uint64_t(limit.rlim_cur) - mapped : 0;
+}
+
+std::string mib(uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20); }
+
+}  // namespace
+
+uint64_t usableMemoryBytes() { return std::min(physicalMemoryBytes(), addressSpaceLeft()); }
+
+void requireMemory(uint64_t bytes, const std::string& where, const std::string& what) {
+  const uint64_t usable = usableMemoryBytes();
+  if (bytes <= usable) return;
+  throw InputError(where + ": " + what + " needs " + mib(bytes) + " MiB, more than the " +
+                   mib(usable) + " MiB this process may use (physical memory, ulimit -v)");
 }
 
 }  // namespace lzb

@@ -1,6 +1,7 @@
 #pragma once
 // Facts about the running process: cores it may use, peak memory.
 #include <cstdint>
+#include <string>
 
 namespace lzb {
 
@@ -8,5 +9,12 @@ int coresOwned();             // CPUs in this process's affinity mask (what mpir
 uint64_t peakMemoryBytes();   // peak resident set size so far
 // Sets the thread count for OpenMP and (through LP_NUM_THREADS) llvmpipe; call before rendering.
 void useThreads(int threads);
+
+// Bytes this process may still allocate: the least of physical memory and what the address-space
+// limit (RLIMIT_AS, `ulimit -v`) leaves above the address space already mapped.
+uint64_t usableMemoryBytes();
+// Throws InputError "<where>: <what> needs N MiB, more than the M MiB this process may use
+// (physical memory, ulimit -v)" when `bytes` exceed usableMemoryBytes(). Call before allocating.
+void requireMemory(uint64_t bytes, const std::string& where, const std::string& what);
 
 }  // namespace lzb

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "src/core/error.hpp"
+#include "src/core/system.hpp"
 #include "src/rzb/rzb_renderer.hpp"
 
 namespace lzb {
@@ -91,6 +92,8 @@ class RzbMethod : public Method {
   void validate() override {
     params_ = rzb::parseRzbOptions(eps_, oversample_, splat_, fallback_, reconstruct_, areaRatio_,
                                    cacheMb_, backfaces_, fallbackRender_);
+    // A budget the process cannot hold is refused now, not when the cache fills.
+    requireMemory(params_.cacheBytes(), "--cache-mb", "a sample cache");
   }
   nlohmann::json parameters() const override { return params_.toJson(); }
   std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const override {

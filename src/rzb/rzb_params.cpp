@@ -2,11 +2,23 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
 
 #include "src/core/error.hpp"
 #include "src/rzb/sample_cache.hpp"
 
 namespace lzb::rzb {
+
+namespace {
+
+// 1e+300, not 300 digits.
+std::string shortNumber(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
 
 void RzbParams::validate() const {
   require(autoEps || (std::isfinite(eps) && eps > 1.0 && eps <= 1000.0), "--eps",
@@ -21,8 +33,8 @@ void RzbParams::validate() const {
           "must be 'auto', 'off' or a projected triangle area in pixels > 0");
   require(areaRatio >= 2.0 && areaRatio <= 64.0, "--area-ratio",
           "must be in [2, 64], got " + std::to_string(areaRatio));
-  require(std::isfinite(cacheMb) && cacheMb >= 0.0, "--cache-mb",
-          "must be 0 (no cache) or a budget in MiB, got " + std::to_string(cacheMb));
+  require(std::isfinite(cacheMb) && cacheMb >= 0.0 && cacheMb <= kMaxCacheMb, "--cache-mb",
+          "must be 0 (no cache) or a budget in MiB up to 2^40, got " + shortNumber(cacheMb));
   require(std::isfinite(gaussFactor) && gaussFactor >= 1.0, "gauss factor", "must be >= 1");
 }
 
@@ -36,6 +48,8 @@ double RzbParams::fallbackThreshold(double pixels) const {
   if (fallbackPx > 0.0) return fallbackPx;
   return double(splat) * double(splat) / std::log(pixels);
 }
+
+uint64_t RzbParams::cacheBytes() const { return uint64_t(cacheMb * 1024.0 * 1024.0); }
 
 uint64_t RzbParams::minCacheBytes(int width, int height, int splat) {
   // A box covering the image holds at least one quantized sample per splat.

@@ -11,6 +11,9 @@ enum class Reconstruct { kPixel, kSplat, kGauss };
 // Which exact z-buffer draws the fallback's triangles: the native one (multithreaded) or OSMesa.
 enum class FallbackRender { kNative, kGl };
 
+// The largest --cache-mb (1 EiB): its byte count fits an integer exactly.
+constexpr double kMaxCacheMb = 1099511627776.0;
+
 struct RzbParams {
   double eps = 1.5;            // depth accuracy: select a box when (zmax / zmin)^2 <= eps
   bool autoEps = false;        // search eps per frame for the least modelled cost (section 8.2)
@@ -31,6 +34,8 @@ struct RzbParams {
   double samplesPerPixel(double pixels) const;
   // The fallback threshold in pixels of projected triangle area (+inf when off).
   double fallbackThreshold(double pixels) const;
+  // The cache budget in bytes (validated: no overflow).
+  uint64_t cacheBytes() const;
   // The smallest cache budget that holds one box covering the image once (bytes).
   static uint64_t minCacheBytes(int width, int height, int splat);
   nlohmann::json toJson() const;

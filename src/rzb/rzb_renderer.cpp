@@ -33,7 +33,7 @@ RzbRenderer::RzbRenderer(const Scene& scene, const RenderOptions& options, const
   tp.progress = !options.quiet;
   trees_ = std::make_unique<SampleScene>(scene, tp);
   if (params_.cacheMb > 0.0)
-    cache_ = std::make_unique<SampleCache>(uint64_t(params_.cacheMb * 1024.0 * 1024.0));
+    cache_ = std::make_unique<SampleCache>(params_.cacheBytes());
 }
 
 std::string RzbRenderer::decomposition() const {
