@@ -76,48 +76,76 @@ uint64_t readUnsigned(const unsigned char* p, int size, bool bigEndian) {
   return v;
 }
 
+std::vector<std::string> wordsOf(const std::string& line) {
+  std::istringstream s(line);
+  std::vector<std::string> words;
+  for (std::string w; s >> w;) words.push_back(w);
+  return words;
+}
+
+// One "property" line of element `e` (words split).
+PlyProperty plyProperty(const std::vector<std::string>& w, const std::string& line,
+                        const std::string& where) {
+  PlyProperty p;
+  if (w[1] == "list") {
+    require(w.size() == 5, where, "malformed PLY header line '" + line + "'");
+    p.countSize = plyTypeSize(w[2]);
+    p.size = plyTypeSize(w[3]);
+    require(p.countSize > 0 && p.size > 0, where, "unknown PLY list type in '" + line + "'");
+    // A count is an integer (at most 4 bytes here); a float one would be read two ways.
+    require(w[2].find("float") == std::string::npos && w[2] != "double", where,
+            "PLY list count type must be an integer type in '" + line + "'");
+    return p;
+  }
+  require(w.size() == 3, where, "malformed PLY header line '" + line + "'");
+  p.size = plyTypeSize(w[1]);
+  require(p.size > 0, where, "unknown PLY property type in '" + line + "'");
+  return p;
+}
+
+// The header's elements. Other lines pass (Blender 2.47 wrote free text), as assimp reads them.
+std::vector<PlyElement> plyHeader(const std::string& text, const std::string& where,
+                                  std::string& format) {
+  std::istringstream header(text);
+  std::vector<PlyElement> elements;
+  for (std::string line; std::getline(header, line);) {
+    const std::vector<std::string> w = wordsOf(line);
+    if (w.empty() || w[0] == "ply" || w[0] == "comment" || w[0] == "obj_info") continue;
+    if (w[0] == "format") {
+      require(w.size() == 3, where, "malformed PLY header line '" + line + "'");
+      format = w[1];
+    } else if (w[0] == "element") {
+      PlyElement e;
+      const auto r = w.size() == 3 ? std::from_chars(w[2].data(), w[2].data() + w[2].size(), e.count)
+                                   : std::from_chars_result{nullptr, std::errc::invalid_argument};
+      require(r.ec == std::errc() && r.ptr == w[2].data() + w[2].size(), where,
+              "malformed PLY header line '" + line + "'");
+      e.name = w[1];
+      elements.push_back(e);
+    } else if (w[0] == "property") {
+      require(!elements.empty(), where, "PLY property before any element");
+      require(w.size() >= 3, where, "malformed PLY header line '" + line + "'");
+      elements.back().properties.push_back(plyProperty(w, line, where));
+    }
+  }
+  for (const PlyElement& e : elements)
+    require(e.count == 0 || !e.properties.empty(), where,
+            "PLY element '" + e.name + "' has no properties");
+  return elements;
+}
+
 void checkPly(const std::filesystem::path& path, const std::string& data) {
   const std::string where = path.string();
   // The header is text up to the line "end_header"; the data starts after that line.
   const size_t endHeader = data.find("end_header");
   require(endHeader != std::string::npos, where,
           "PLY header has no end_header (truncated or malformed)");
+  // assimp loops forever on an end_header inside a line.
+  require(data[endHeader - 1] == '\n', where, "PLY end_header is not on a line of its own");
   const size_t eol = data.find('\n', endHeader);
   const size_t dataStart = eol == std::string::npos ? data.size() : eol + 1;
-  std::istringstream header(data.substr(0, endHeader));
-  std::string line, format;
-  std::vector<PlyElement> elements;
-  while (std::getline(header, line)) {
-    std::istringstream words(line);
-    std::string word;
-    words >> word;
-    if (word == "format") {
-      words >> format;
-    } else if (word == "element") {
-      PlyElement e;
-      require(bool(words >> e.name >> e.count), where, "malformed PLY header line '" + line + "'");
-      elements.push_back(e);
-    } else if (word == "property") {
-      require(!elements.empty(), where, "PLY property before any element");
-      std::string type;
-      words >> type;
-      PlyProperty p;
-      if (type == "list") {
-        std::string countType, itemType;
-        words >> countType >> itemType;
-        p.countSize = plyTypeSize(countType);
-        p.size = plyTypeSize(itemType);
-        require(p.countSize > 0 && p.size > 0, where, "unknown PLY list type in '" + line + "'");
-        // A count is an integer (at most 4 bytes here); a float one would be read two ways.
-        require(countType.find("float") == std::string::npos && countType != "double", where,
-                "PLY list count type must be an integer type in '" + line + "'");
-      } else {
-        p.size = plyTypeSize(type);
-        require(p.size > 0, where, "unknown PLY property type in '" + line + "'");
-      }
-      elements.back().properties.push_back(p);
-    }
-  }
+  std::string format;
+  const std::vector<PlyElement> elements = plyHeader(data.substr(0, endHeader), where, format);
   if (format == "ascii") {
     // One token per scalar; a list is its count followed by that many items.
     Tokens tokens(data, dataStart);
@@ -228,6 +256,8 @@ void checkOff(const std::filesystem::path& path, const std::string& data) {
     // k < size, not size >= k + 1: a face size near 2^64 must not wrap.
     require(r.ec == std::errc() && k < words.size(), where,
             "malformed OFF face " + std::to_string(f) + ": '" + line + "'");
+    // assimp's OFF reader crashes on a face of no vertices.
+    require(k > 0, where, "malformed OFF face " + std::to_string(f) + ": it has no vertices");
     // assimp clamps an index past the vertices to the last vertex, silently.
     for (uint64_t i = 1; i <= k; ++i) {
       uint64_t index = 0;
@@ -269,17 +299,48 @@ void checkStl(const std::filesystem::path& path, const std::string& data) {
                    " bytes), file has " + std::to_string(data.size()) + " bytes");
 }
 
+// ---- GLB ----
+
+// The binary glTF container: its lengths must lie inside the file (assimp allocates what a
+// chunk header claims before reading it: 1.6 GB for a 200-byte file).
+void checkGlb(const std::filesystem::path& path, const std::string& data) {
+  const std::string where = path.string();
+  const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
+  require(data.size() >= 12 && data.compare(0, 4, "glTF") == 0, where,
+          "not a binary glTF file (no 12-byte GLB header)");
+  const uint64_t version = readUnsigned(bytes + 4, 4, false);
+  if (version == 1) {  // glTF 1.0: scene content after 20 bytes (its total length is often off)
+    require(data.size() >= 20 && readUnsigned(bytes + 12, 4, false) <= data.size() - 20, where,
+            "truncated: the GLB scene content runs past the end of the file");
+    return;
+  }
+  require(version == 2, where, "unknown GLB version " + std::to_string(version));
+  const uint64_t length = readUnsigned(bytes + 8, 4, false);
+  require(length <= data.size(), where,
+          "truncated: the GLB header promises " + std::to_string(length) + " bytes, the file has " +
+              std::to_string(data.size()));
+  for (uint64_t at = 12; at < length;) {
+    require(length - at >= 8, where, "truncated: a GLB chunk header runs past the file's length");
+    const uint64_t chunk = readUnsigned(bytes + at, 4, false);
+    require(chunk <= length - at - 8, where,
+            "truncated: a GLB chunk of " + std::to_string(chunk) + " bytes runs past the file's length");
+    at += 8 + chunk;
+  }
+}
+
 }  // namespace
 
 void checkMeshFileComplete(const std::filesystem::path& path) {
   const std::string ext = lower(path.extension().string());
-  if (ext != ".ply" && ext != ".off" && ext != ".stl") return;
+  if (ext != ".ply" && ext != ".off" && ext != ".stl" && ext != ".glb") return;
   const std::string data = readAll(path);
   if (ext == ".ply") {
     require(data.compare(0, 3, "ply") == 0, path.string(), "not a PLY file (no 'ply' magic)");
     checkPly(path, data);
   } else if (ext == ".off") {
     checkOff(path, data);
+  } else if (ext == ".glb") {
+    checkGlb(path, data);
   } else {
     checkStl(path, data);
   }

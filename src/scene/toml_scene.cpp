@@ -3,8 +3,10 @@
 #include <toml++/toml.h>
 
 #include <cmath>
+#include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <initializer_list>
+#include <iterator>
 #include <map>
 #include <numbers>
 #include <string>
@@ -14,6 +16,7 @@
 #include "src/core/error.hpp"
 #include "src/scene/builtin.hpp"
 #include "src/scene/mesh_file.hpp"
+#include "src/scene/toml_text_check.hpp"
 
 namespace lzb {
 
@@ -395,7 +398,15 @@ void TomlSceneReader::checkCycles(const toml::array& nodes) const {
 Scene TomlSceneReader::read() {
   toml::table doc;
   try {
-    doc = toml::parse_file(path_.string());
+    std::ifstream in(path_, std::ios::binary);
+    if (in) {
+      // Checked, then parsed from the same bytes.
+      const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+      checkTomlText(text, file_);
+      doc = toml::parse(text, path_.string());
+    } else {
+      doc = toml::parse_file(path_.string());  // its error says why the file cannot be read
+    }
   } catch (const toml::parse_error& e) {
     throw InputError(file_ + ":" + std::to_string(e.source().begin.line) + ":" +
                      std::to_string(e.source().begin.column) +
