@@ -452,6 +452,8 @@ INSTANTIATE_TEST_SUITE_P(
         // Resources, checked before anything is allocated.
         BadCase{"cache_mb_not_an_integer", "render builtin:sphereflake --method rzb --cache-mb 1e300",
                 "--cache-mb: must be 0 (no cache) or a budget in MiB up to 2^40, got 1e+300"},
+        BadCase{"oversample_1e300", "render builtin:sphereflake --method rzb --oversample 1e300",
+                "--oversample: must be in (0, 1000], got 1e+300"},
         BadCase{"cache_mb_beyond_memory", "render builtin:sphereflake --method rzb --cache-mb 1e9",
                 "--cache-mb: a sample cache needs 1000000000 MiB"},
         BadCase{"frame_beyond_ulimit", "render builtin:sphereflake --width 16384 --height 16384",

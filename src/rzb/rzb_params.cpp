@@ -22,9 +22,9 @@ std::string shortNumber(double v) {
 
 void RzbParams::validate() const {
   require(autoEps || (std::isfinite(eps) && eps > 1.0 && eps <= 1000.0), "--eps",
-          "must be > 1 (and at most 1000) or 'auto', got " + std::to_string(eps));
+          "must be > 1 (and at most 1000) or 'auto', got " + shortNumber(eps));
   require(std::isfinite(oversample) && oversample > 0.0 && oversample <= 1000.0, "--oversample",
-          "must be in (0, 1000], got " + std::to_string(oversample));
+          "must be in (0, 1000], got " + shortNumber(oversample));
   require(splat >= 1 && splat <= 64, "--splat", "must be in [1, 64], got " + std::to_string(splat));
   require(!(reconstruct == Reconstruct::kPixel && splat > 1), "--reconstruct",
           "'pixel' draws single pixels; use --reconstruct splat with --splat " +
@@ -32,7 +32,7 @@ void RzbParams::validate() const {
   require(!fallback || (std::isfinite(fallbackPx) && fallbackPx >= 0.0), "--fallback",
           "must be 'auto', 'off' or a projected triangle area in pixels > 0");
   require(areaRatio >= 2.0 && areaRatio <= 64.0, "--area-ratio",
-          "must be in [2, 64], got " + std::to_string(areaRatio));
+          "must be in [2, 64], got " + shortNumber(areaRatio));
   require(std::isfinite(cacheMb) && cacheMb >= 0.0 && cacheMb <= kMaxCacheMb, "--cache-mb",
           "must be 0 (no cache) or a budget in MiB up to 2^40, got " + shortNumber(cacheMb));
   require(std::isfinite(gaussFactor) && gaussFactor >= 1.0, "gauss factor", "must be >= 1");

@@ -140,8 +140,11 @@ void checkPly(const std::filesystem::path& path, const std::string& data) {
   const size_t endHeader = data.find("end_header");
   require(endHeader != std::string::npos, where,
           "PLY header has no end_header (truncated or malformed)");
-  // assimp loops forever on an end_header inside a line.
-  require(data[endHeader - 1] == '\n', where, "PLY end_header is not on a line of its own");
+  // assimp loops forever on an end_header inside a line or run on ("end_headerat").
+  const size_t after = endHeader + 10;
+  require(data[endHeader - 1] == '\n' &&
+              (after == data.size() || std::isspace(static_cast<unsigned char>(data[after]))),
+          where, "PLY end_header is not on a line of its own");
   const size_t eol = data.find('\n', endHeader);
   const size_t dataStart = eol == std::string::npos ? data.size() : eol + 1;
   std::string format;
@@ -212,13 +215,24 @@ void checkPly(const std::filesystem::path& path, const std::string& data) {
 
 // ---- OFF ----
 
+// The header keywords assimp reads: [ST][C][N][4]OFF (nOFF, of any dimension, it misreads).
+bool offKeyword(std::string_view w) {
+  for (std::string_view prefix : {"ST", "C", "N", "4"})
+    if (w.substr(0, prefix.size()) == prefix) w.remove_prefix(prefix.size());
+  return w == "OFF";
+}
+
 void checkOff(const std::filesystem::path& path, const std::string& data) {
   const std::string where = path.string();
   std::istringstream in(data);
   std::string line;
+  bool body = false;  // past the counts: assimp reads a comment line there as a vertex or face
   // Lines without comments and blanks, split into words.
   const auto nextLine = [&](std::vector<std::string>& words) {
     while (std::getline(in, line)) {
+      require(!body || line.find_first_not_of(" \t\r") == std::string::npos ||
+                  line[line.find_first_not_of(" \t\r")] != '#',
+              where, "a comment line among the OFF vertices or faces: '" + line + "'");
       line = line.substr(0, line.find('#'));
       std::istringstream s(line);
       words.clear();
@@ -231,6 +245,8 @@ void checkOff(const std::filesystem::path& path, const std::string& data) {
   require(nextLine(words), where, "empty OFF file");
   // The header keyword may carry prefixes (COFF, NOFF, STOFF...) and the counts on the same line.
   if (words[0].find("OFF") != std::string::npos) {
+    // Counts read after another keyword ("OFF4 4 0") would not be the counts assimp reads.
+    require(offKeyword(words[0]), where, "malformed OFF header keyword '" + words[0] + "'");
     if (words.size() > 1 && lower(words[1]) == "binary") return;  // binary OFF: left to assimp
     words.erase(words.begin());
     if (words.empty()) require(nextLine(words), where, "truncated: OFF file has no counts line");
@@ -243,6 +259,7 @@ void checkOff(const std::filesystem::path& path, const std::string& data) {
     require(r.ec == std::errc() && r.ptr == w.data() + w.size(), where,
             "malformed OFF counts line: '" + w + "' is not a count");
   }
+  body = true;
   for (uint64_t v = 0; v < counts[0]; ++v)
     require(nextLine(words), where,
             "truncated: the header promises " + std::to_string(counts[0]) +
@@ -256,8 +273,11 @@ void checkOff(const std::filesystem::path& path, const std::string& data) {
     // k < size, not size >= k + 1: a face size near 2^64 must not wrap.
     require(r.ec == std::errc() && k < words.size(), where,
             "malformed OFF face " + std::to_string(f) + ": '" + line + "'");
-    // assimp's OFF reader crashes on a face of no vertices.
+    // assimp's OFF reader crashes on a face of no vertices and drops one of more than 9.
     require(k > 0, where, "malformed OFF face " + std::to_string(f) + ": it has no vertices");
+    require(k <= 9, where,
+            "OFF face " + std::to_string(f) + " has " + std::to_string(k) +
+                " vertices; the reader (assimp) takes at most 9");
     // assimp clamps an index past the vertices to the last vertex, silently.
     for (uint64_t i = 1; i <= k; ++i) {
       uint64_t index = 0;
@@ -319,6 +339,10 @@ void checkGlb(const std::filesystem::path& path, const std::string& data) {
   require(length <= data.size(), where,
           "truncated: the GLB header promises " + std::to_string(length) + " bytes, the file has " +
               std::to_string(data.size()));
+  // A GLB without its JSON chunk first is one assimp's glTF reader declines, and then every
+  // other reader tries the bytes (one read past them).
+  require(length >= 20 && data.compare(16, 4, "JSON") == 0, where,
+          "malformed GLB: its first chunk is not the JSON chunk");
   for (uint64_t at = 12; at < length;) {
     require(length - at >= 8, where, "truncated: a GLB chunk header runs past the file's length");
     const uint64_t chunk = readUnsigned(bytes + at, 4, false);

@@ -199,6 +199,16 @@ TEST(MeshFile, FuzzFindingsAreRefusedBeforeAssimp) {
   ScratchDir dir;
   expectError(dir.write("empty_face.off", "OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"),
               "malformed OFF face 0: it has no vertices");
+  expectError(dir.write("keyword.off", "OFF4 4 0\n0 0 0\n3 1 0\n0 0 0\n3 1 0\n"),
+              "malformed OFF header keyword 'OFF4'");
+  expectError(dir.write("comment.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n# c\n3 0 1 2\n"),
+              "a comment line among the OFF vertices or faces: '# c'");
+  expectError(dir.write("ten.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n10 0 1 2 0 1 2 0 1 2 0\n"),
+              "OFF face 0 has 10 vertices; the reader (assimp) takes at most 9");
+  EXPECT_EQ(load(dir.write("c.off", "COFF\n3 1 0\n0 0 0 255 0 0 255\n1 0 0 255 0 0 255\n"
+                                     "0 1 0 255 0 0 255\n3 0 1 2\n"))
+                .expandedTriangles(),
+            1u);
   // "3ascii" read as 3 by a stream, an element without properties, a misspelt keyword: assimp
   // looped forever on this header.
   const std::string props = "property float x\nproperty float y\nproperty float z\n";
@@ -217,10 +227,15 @@ TEST(MeshFile, FuzzFindingsAreRefusedBeforeAssimp) {
             1u);
   expectError(dir.write("inline.ply", "ply\nformat ascii 1.0\nelement vertex 0\nfoo/end_header\n"),
               "end_header is not on a line of its own");
+  expectError(dir.write("run_on.ply", "ply\nformat ascii 1.0\nelement vertex 0\nend_headerat x\n"),
+              "end_header is not on a line of its own");
   // A GLB whose JSON chunk claims 0x600002a4 bytes in a 200-byte file.
   std::string glb("glTF\x02\0\0\0\xc8\0\0\0\xa4\x02\0\x60JSON", 20);
   glb.resize(200, ' ');
   expectError(dir.write("chunk.glb", glb), "a GLB chunk of 1610613412 bytes runs past");
+  std::string empty("glTF\x02\0\0\0\0\0\0\0", 12);
+  empty.resize(163, '\0');
+  expectError(dir.write("empty.glb", empty), "its first chunk is not the JSON chunk");
   std::string longer("glTF\x02\0\0\0\x00\x10\0\0", 12);
   expectError(dir.write("long.glb", longer), "the GLB header promises 4096 bytes, the file has 12");
 }
