@@ -131,6 +131,9 @@ std::vector<PlyElement> plyHeader(const std::string& text, const std::string& wh
   for (const PlyElement& e : elements)
     require(e.count == 0 || !e.properties.empty(), where,
             "PLY element '" + e.name + "' has no properties");
+  require(std::any_of(elements.begin(), elements.end(),
+                      [](const PlyElement& e) { return e.name == "vertex"; }),
+          where, "PLY header declares no 'vertex' element");
   return elements;
 }
 
@@ -143,8 +146,10 @@ void checkPly(const std::filesystem::path& path, const std::string& data) {
   // assimp loops forever on an end_header inside a line or run on ("end_headerat").
   const size_t after = endHeader + 10;
   require(data[endHeader - 1] == '\n' &&
-              (after == data.size() || std::isspace(static_cast<unsigned char>(data[after]))),
+              (after == data.size() || data[after] == '\n' || data.compare(after, 2, "\r\n") == 0),
           where, "PLY end_header is not on a line of its own");
+  // assimp reads the header as C strings: a NUL in it hides the rest (then it crashed).
+  require(data.find('\0') > endHeader, where, "PLY header holds a NUL byte");
   const size_t eol = data.find('\n', endHeader);
   const size_t dataStart = eol == std::string::npos ? data.size() : eol + 1;
   std::string format;

@@ -227,6 +227,12 @@ TEST(MeshFile, FuzzFindingsAreRefusedBeforeAssimp) {
             1u);
   expectError(dir.write("inline.ply", "ply\nformat ascii 1.0\nelement vertex 0\nfoo/end_header\n"),
               "end_header is not on a line of its own");
+  expectError(dir.write("nul.ply", std::string("ply\nformat ascii 1.0\nco\0mment\nelement vertex 0\n"
+                                                "property float x\nend_header\n",
+                                                75)),
+              "PLY header holds a NUL byte");
+  expectError(dir.write("novertex.ply", "ply\nformat binary_big_endian 1.0\nelemeexces\nend_header\n"),
+              "PLY header declares no 'vertex' element");
   expectError(dir.write("run_on.ply", "ply\nformat ascii 1.0\nelement vertex 0\nend_headerat x\n"),
               "end_header is not on a line of its own");
   // A GLB whose JSON chunk claims 0x600002a4 bytes in a 200-byte file.

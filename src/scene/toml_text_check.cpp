@@ -1,107 +1,61 @@
 #include "src/scene/toml_text_check.hpp"
 
+#include <cstdint>
+#include <cstdio>
+
 #include "src/core/error.hpp"
 
 namespace lzb {
 
 namespace {
 
-bool isAscii(char c) { return static_cast<unsigned char>(c) < 0x80; }
-bool isSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n'; }
+// The code points toml++ 3.3's is_non_ascii_horizontal_whitespace() has no answer for.
+bool unclassifiable(char32_t c) {
+  return (c >= 0xA1 && c <= 0x499) || (c >= 0x2C5E && c <= 0x2FFF) || (c >= 0x3001 && c <= 0x3057) ||
+         (c >= 0xFB26 && c <= 0xFEFE);
+}
 
-class TomlScanner {
- public:
-  TomlScanner(std::string_view text, const std::string& file) : s_(text), file_(file) {
-    if (s_.substr(0, 3) == "\xEF\xBB\xBF") at_ = 3;  // a UTF-8 byte order mark, which toml++ skips
+// The UTF-8 sequence at s[at] and its length; an invalid one reads as 0xFFFD of length 1
+// (toml++ refuses invalid UTF-8 itself, before classifying anything).
+char32_t decode(std::string_view s, size_t at, size_t& length) {
+  const auto byte = [&](size_t i) { return static_cast<unsigned char>(s[i]); };
+  const unsigned char lead = byte(at);
+  length = lead < 0x80 ? 1 : lead >= 0xF0 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC0 ? 2 : 0;
+  if (length == 0 || at + length > s.size()) {
+    length = 1;
+    return 0xFFFD;
   }
-
-  void run() {
-    while (at_ < s_.size()) {
-      const char c = s_[at_];
-      if (c == '#') {
-        skipPast("\n");
-      } else if (startsWith("\"\"\"")) {
-        advance(3);
-        multiLineBasic();
-      } else if (startsWith("'''")) {
-        advance(3);
-        skipPast("'''");
-      } else if (c == '"') {
-        advance(1);
-        singleLine('"', true);
-      } else if (c == '\'') {
-        advance(1);
-        singleLine('\'', false);
-      } else {
-        if (!isAscii(c)) refuse("a non-ASCII character outside a string or comment");
-        advance(1);
-      }
+  char32_t c = length == 1 ? lead : lead & (0x7F >> length);
+  for (size_t i = 1; i < length; ++i) {
+    if ((byte(at + i) & 0xC0) != 0x80) {
+      length = 1;
+      return 0xFFFD;
     }
+    c = (c << 6) | (byte(at + i) & 0x3F);
   }
-
- private:
-  bool startsWith(std::string_view p) const { return s_.substr(at_, p.size()) == p; }
-
-  // Moves n bytes on, counting lines and columns (in characters, as toml++ reports them).
-  void advance(size_t n) {
-    for (; n > 0 && at_ < s_.size(); --n, ++at_) {
-      const char c = s_[at_];
-      if (c == '\n') {
-        ++line_;
-        column_ = 1;
-      } else if ((static_cast<unsigned char>(c) & 0xC0) != 0x80) {
-        ++column_;
-      }
-    }
-  }
-
-  void skipPast(std::string_view end) {
-    while (at_ < s_.size() && !startsWith(end)) advance(1);
-    advance(end.size());
-  }
-
-  // A one-line string; toml++ reports an unterminated one itself.
-  void singleLine(char quote, bool escapes) {
-    while (at_ < s_.size() && s_[at_] != quote && s_[at_] != '\n')
-      advance(escapes && s_[at_] == '\\' ? 2 : 1);
-    advance(1);
-  }
-
-  void multiLineBasic() {
-    while (at_ < s_.size() && !startsWith("\"\"\"")) {
-      if (s_[at_] != '\\') {
-        advance(1);
-        continue;
-      }
-      advance(1);
-      if (at_ >= s_.size()) return;
-      if (!isAscii(s_[at_])) refuse("a non-ASCII character after a backslash");
-      if (!isSpace(s_[at_])) {
-        advance(1);
-        continue;
-      }
-      // A line-ending backslash: toml++ tests each character it skips, and the first after.
-      while (at_ < s_.size() && isSpace(s_[at_])) advance(1);
-      if (at_ < s_.size() && !isAscii(s_[at_]))
-        refuse("a non-ASCII character first after a line-ending backslash");
-    }
-    advance(3);
-    for (int k = 0; k < 2 && at_ < s_.size() && s_[at_] == '"'; ++k) advance(1);  // `x"`
-  }
-
-  [[noreturn]] void refuse(const std::string& what) const {
-    throw InputError(file_ + ":" + std::to_string(line_) + ":" + std::to_string(column_) + ": " +
-                     what + " (the TOML reader, toml++ 3.3, cannot read it safely)");
-  }
-
-  std::string_view s_;
-  const std::string& file_;
-  size_t at_ = 0;
-  int line_ = 1, column_ = 1;
-};
+  return c;
+}
 
 }  // namespace
 
-void checkTomlText(std::string_view text, const std::string& file) { TomlScanner(text, file).run(); }
+void checkTomlText(std::string_view text, const std::string& file) {
+  int line = 1, column = 1;
+  for (size_t at = 0, length = 1; at < text.size(); at += length) {
+    const char32_t c = decode(text, at, length);
+    if (unclassifiable(c)) {
+      char code[16];
+      std::snprintf(code, sizeof code, "U+%04X", unsigned(c));
+      throw InputError(file + ":" + std::to_string(line) + ":" + std::to_string(column) +
+                       ": the TOML reader (toml++ 3.3) cannot read the character " + code +
+                       " safely; in a string, write it as the escape \\u" + (code + 2));
+    }
+    if (c == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+}
 
 }  // namespace lzb

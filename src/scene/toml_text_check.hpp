@@ -1,17 +1,17 @@
 #pragma once
 // toml++ 3.3.0 (Debian 12) reaches __builtin_unreachable, undefined behaviour, when it asks
-// whether some non-ASCII characters are whitespace (marzer/tomlplusplus#190 and #295, found again
-// by tests/fuzz): wherever one stands outside a string or comment, after a backslash in a
-// multi-line basic string, and first after a line-ending backslash. TOML allows non-ASCII text
-// only in strings and comments, and the escapes take none, so this check refuses those
-// characters before toml++ reads the file, losing no valid scene but a multi-line string whose
-// continued line starts with a non-ASCII character.
+// whether a character of U+00A1-U+0499, U+2C5E-U+2FFF, U+3001-U+3057 or U+FB26-U+FEFE is
+// whitespace (marzer/tomlplusplus#190 and #295, found again by tests/fuzz). It asks outside
+// strings, after backslashes in multi-line strings, and wherever a malformed token runs on over
+// quotes, so no reading of the text short of toml++'s own tells where it will ask: this check
+// refuses those characters anywhere in a scene file, before toml++ reads it. In a string they
+// can be written as escapes ("\u00E9"), which toml++ decodes without asking.
 #include <string>
 #include <string_view>
 
 namespace lzb {
 
-// Throws InputError "<file>:<line>:<column>: ..." at the first character toml++ cannot read safely.
+// Throws InputError "<file>:<line>:<column>: ..." at the first such character.
 void checkTomlText(std::string_view text, const std::string& file);
 
 }  // namespace lzb
