@@ -442,7 +442,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"surfel_rate", "render builtin:sphereflake --method surfels --budget-rate fast",
                 "--budget-rate"},
         BadCase{"surfelize", "render builtin:sphereflake --method surfels --surfelize voxels",
-                "--surfelize"}),
+                "--surfelize"},
         // The scene graph: 100,000 chained nodes, a node instancing itself, 10^30 triangles.
         BadCase{"chain_100000", "render DIR/chain.toml", "deeper than 64 levels"},
         BadCase{"self_instance", "render DIR/self.toml", "instancing cycle: me -> me"},
