@@ -533,7 +533,7 @@ const std::map<std::string, Case>& cases() {
     list.push_back(makeCase("instanced_twin", [] { return chessboardView(64, 131072.0); }));
     Case huge = makeCase("splat_64", base, "--splat 64");
     huge.expect = [](const std::string& m) {
-      return onlyFor(m, {"rzb", "hybrid"}, Expect::kCoarse);
+      return onlyFor(m, {"rzb", "hybrid", "surfels", "sampletree"}, Expect::kCoarse);
     };
     list.push_back(huge);
     Case tiny = makeCase("splat_1_gauss", base, "--splat 1 --reconstruct gauss");
