@@ -62,7 +62,8 @@ TEST(HybridRenderer, WithNothingSampledCastsLikeLzbEveryFrame) {
     EXPECT_EQ(hs.shared.value("sampled_leaves", -1.0), 0.0) << "frame " << f;
     // Embree's rays, as lzb's (nothing to skip).
     EXPECT_FALSE(hs.counts.contains("octree_leaves_visited")) << "frame " << f;
-    for (const char* k : {"rays_cast", "rays_hit", "hit_placements_resolved", "pvl_size"})
+    // (Not hit_placements_resolved: per-thread cache misses, which depend on the tile schedule.)
+    for (const char* k : {"rays_cast", "rays_hit", "pvl_size"})
       EXPECT_EQ(hs.counts.value(k, -1.0), ls.counts.value(k, -2.0)) << k << ", frame " << f;
     EXPECT_EQ(h.id, l.id) << "frame " << f;
   }

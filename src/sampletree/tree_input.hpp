@@ -27,6 +27,11 @@ struct TriangleInput {
   void add(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, uint64_t id, Rgba8 colour);
 };
 
+// The tree stores world coordinates as floats: a scene whose float rounding exceeds this fraction
+// of its size (e.g. a small scene 1e8 from the origin) is refused with exit status 2.
+constexpr double kMaxFloatRounding = 1e-4;
+void requireFloatResolves(const Scene& scene);
+
 // Every expanded triangle of the scene in expanded-ID order; throws InputError naming the scene
 // when it has more than `limit` of them.
 TriangleInput gatherTriangles(const Scene& scene, uint64_t limit = kMaxInCoreTriangles);
