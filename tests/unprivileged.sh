@@ -4,12 +4,18 @@
 # nothing is added to or left on the machine; as any other user, that user. The GoogleTest cases
 # that skip themselves as root must run and pass here, and lzb render must refuse an unreadable
 # scene and an unwritable --out with exit status 2, naming them, and write nothing.
-# usage: unprivileged.sh WORK_DIR SCENE_TEST IMAGE_TEST LZB_BINARY
+# usage: unprivileged.sh WORK_DIR SCENE_TEST IMAGE_TEST LZB_BINARY (WORK_DIR: used when not root)
 set -euo pipefail
 work="$1" scene_test="$2" image_test="$3" lzb="$4"
-rm -rf "$work" && mkdir -p "$work"
-# The programs are copied into the work folder, which the unprivileged uid can reach whatever the
-# permissions of the checkout above it.
+# As root the work folder is a fresh one in /tmp: the unprivileged uid must be able to walk every
+# folder above it, which a checkout under a private (0700) folder, such as mktemp -d's, forbids.
+if [ "$(id -u)" -eq 0 ]; then
+  work=$(mktemp -d /tmp/lzb-unprivileged.XXXXXX)
+  trap 'rm -rf "$work"' EXIT
+else
+  rm -rf "$work" && mkdir -p "$work"
+fi
+# The programs are copied into the work folder, where the unprivileged uid can run them.
 cp "$scene_test" "$image_test" "$lzb" "$work/"
 mkdir -p "$work/tmp"
 chmod 755 "$work"

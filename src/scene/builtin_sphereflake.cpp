@@ -18,30 +18,6 @@ constexpr int kSlices = 10;  // around the axis
 constexpr int kStacks = 11;  // pole to pole: 2 * kSlices * (kStacks - 1) = 200 triangles
 constexpr Rgba8 kColor = packRgba8(214, 196, 160);
 
-void addUnitSphere(Mesh& mesh, LoadStats& stats) {
-  MeshBuilder builder(mesh, stats);
-  const double pi = std::numbers::pi;
-  const auto point = [&](int stack, int slice) {
-    const double theta = pi * stack / kStacks, phi = 2.0 * pi * slice / kSlices;
-    return glm::dvec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
-                      std::cos(theta));
-  };
-  // Wound so the normal points away from the centre.
-  const auto outward = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-    if (glm::dot(glm::cross(b - a, c - a), a + b + c) >= 0.0)
-      builder.triangle(a, b, c, kColor);
-    else
-      builder.triangle(a, c, b, kColor);
-  };
-  for (int st = 0; st < kStacks; ++st)
-    for (int sl = 0; sl < kSlices; ++sl) {
-      const glm::dvec3 a = point(st, sl), b = point(st + 1, sl), c = point(st + 1, sl + 1),
-                       d = point(st, sl + 1);
-      if (st > 0) outward(a, b, d);            // the top pole row is one triangle per slice
-      if (st < kStacks - 1) outward(b, c, d);  // and so is the bottom one
-    }
-}
-
 // The 9 child directions of SPD's balls.c: a triangle of directions tilted towards +z, repeated
 // at three rotations of 120 degrees about z.
 std::array<glm::dvec3, 9> childDirections() {
@@ -76,7 +52,7 @@ Generated generateSphereflake(Scene& scene, BuiltinParams& params) {
   const int64_t depth = params.integer("depth", 3, 0, 16);
   params.finish();
   const uint32_t sphere = scene.addNode("sphereflake/sphere");
-  addUnitSphere(scene.nodes[sphere].mesh, scene.stats);
+  MeshBuilder(scene.nodes[sphere].mesh, scene.stats).sphere(kSlices, kStacks, kColor);
 
   const std::array<glm::dvec3, 9> dirs = childDirections();
   uint32_t child = 0;

@@ -1,6 +1,7 @@
 #include "src/scene/mesh_builder.hpp"
 
 #include <cmath>
+#include <numbers>
 
 namespace lzb {
 
@@ -48,6 +49,29 @@ void MeshBuilder::box(const Bounds& b, Rgba8 color, bool bottom) {
   quad({l.x, h.y, l.z}, {h.x, h.y, l.z}, {h.x, h.y, h.z}, {l.x, h.y, h.z}, {0, 1, 0}, color);
   if (bottom)
     quad({l.x, l.y, l.z}, {h.x, l.y, l.z}, {h.x, l.y, h.z}, {l.x, l.y, h.z}, {0, -1, 0}, color);
+}
+
+void MeshBuilder::sphere(int slices, int stacks, Rgba8 color) {
+  const double pi = std::numbers::pi;
+  const auto point = [&](int stack, int slice) {
+    const double theta = pi * stack / stacks, phi = 2.0 * pi * slice / slices;
+    return glm::dvec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                      std::cos(theta));
+  };
+  // Wound so the normal points away from the centre.
+  const auto outward = [&](const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    if (glm::dot(glm::cross(b - a, c - a), a + b + c) >= 0.0)
+      triangle(a, b, c, color);
+    else
+      triangle(a, c, b, color);
+  };
+  for (int st = 0; st < stacks; ++st)
+    for (int sl = 0; sl < slices; ++sl) {
+      const glm::dvec3 a = point(st, sl), b = point(st + 1, sl), c = point(st + 1, sl + 1),
+                       d = point(st, sl + 1);
+      if (st > 0) outward(a, b, d);           // the top pole row is one triangle per slice
+      if (st < stacks - 1) outward(b, c, d);  // and so is the bottom one
+    }
 }
 
 }  // namespace lzb

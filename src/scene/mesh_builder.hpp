@@ -22,6 +22,9 @@ class MeshBuilder {
   // The faces of an axis-aligned box with outward normals: 12 triangles, or 10 without the
   // bottom face (for boxes standing on something).
   void box(const Bounds& b, Rgba8 color, bool bottom = true);
+  // A closed unit sphere about the z axis, `slices` around it and `stacks` pole to pole:
+  // 2 * slices * (stacks - 1) triangles (one fan triangle per slice at each pole), normals outward.
+  void sphere(int slices, int stacks, Rgba8 color);
 
  private:
   Mesh& mesh_;

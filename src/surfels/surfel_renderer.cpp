@@ -3,39 +3,20 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <numbers>
 #include <set>
 #include <stdexcept>
 
 #include "mpi/decomposition.hpp"
 #include "src/core/error.hpp"
 #include "src/core/timer.hpp"
+#include "src/scene/mesh_builder.hpp"
 
 namespace lzb::surfels {
 
 Mesh uvSphere(int slices, int stacks) {
   Mesh mesh;
-  const double pi = std::numbers::pi;
-  const auto point = [&](int st, int sl) {
-    const double theta = pi * st / stacks, phi = 2.0 * pi * sl / slices;
-    return glm::vec3(glm::dvec3(std::sin(theta) * std::cos(phi), std::cos(theta),
-                                std::sin(theta) * std::sin(phi)));
-  };
-  const Rgba8 grey = packRgba8(200, 200, 200);
-  // Wound so that every normal points away from the centre (the mesh is closed).
-  const auto outward = [&](const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-    if (glm::dot(glm::cross(b - a, c - a), a + b + c) >= 0.0f)
-      mesh.add(a, b, c, grey);
-    else
-      mesh.add(a, c, b, grey);
-  };
-  for (int st = 0; st < stacks; ++st)
-    for (int sl = 0; sl < slices; ++sl) {
-      const glm::vec3 a = point(st, sl), b = point(st + 1, sl), c = point(st + 1, sl + 1),
-                      d = point(st, sl + 1);
-      if (st > 0) outward(a, b, d);  // the pole rows are one triangle per slice
-      if (st < stacks - 1) outward(b, c, d);
-    }
+  LoadStats unused;
+  MeshBuilder(mesh, unused).sphere(slices, stacks, packRgba8(200, 200, 200));
   return mesh;
 }
 

@@ -97,7 +97,7 @@ class SurfelRenderer : public Renderer {
   double setupBuildSeconds_ = 0.0, rateSeconds_ = 0.0, measuredRate_ = 0.0;
 };
 
-// A closed sphere of `slices` x `stacks` (tests and the rate measurement).
+// A grey closed unit sphere of `slices` x `stacks` (tests and the rate measurement).
 Mesh uvSphere(int slices, int stacks);
 
 }  // namespace lzb::surfels

@@ -305,6 +305,37 @@ struct Binner {
   }
 };
 
+// Bins `first.back()` triangles, numbered through ranges (range r holds [first[r], first[r+1])),
+// in chunks the threads share dynamically, each thread into its own bins: body(binner, r, from,
+// to) sets up triangles [from, to) of range r, range-local. Fills the set-up counts.
+template <class Body>
+void binChunks(const std::vector<uint64_t>& first, const PassGeometry& geometry, int threads,
+               std::vector<std::vector<std::vector<RasterTriangle>>>& bins,
+               NativeRasterCounts& counts, Body body) {
+  const uint64_t total = first.back();
+  // At least ~8 chunks per thread, so that a short list (the near pass) is shared evenly.
+  const uint64_t chunk = std::clamp<uint64_t>(total / (8 * uint64_t(threads)), 256, 2048);
+  const long chunks = long((total + chunk - 1) / chunk);
+  uint64_t setUp = 0, clipped = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : setUp, clipped)
+  {
+    Binner binner{geometry, bins[size_t(omp_get_thread_num())], {}};
+#pragma omp for schedule(dynamic, 1)
+    for (long c = 0; c < chunks; ++c) {
+      const uint64_t begin = uint64_t(c) * chunk, end = std::min(total, begin + chunk);
+      // The last range starting at or before begin (empty ranges share their start).
+      size_t r = size_t(std::upper_bound(first.begin(), first.end(), begin) - first.begin()) - 1;
+      for (uint64_t g = begin; g < end; g = first[++r])
+        body(binner, r, size_t(g - first[r]), size_t(std::min(end, first[r + 1]) - first[r]));
+    }
+    setUp += binner.setUp;
+    clipped += binner.clipped;
+  }
+  counts.triangles = total;
+  counts.setUp = setUp;
+  counts.clipped = clipped;
+}
+
 }  // namespace
 
 void NativeRasterizer::clearBins(int threads, int height) {
@@ -339,52 +370,32 @@ void NativeRasterizer::draw(const Scene& scene, const Camera& camera, const Draw
     transforms[l].b = toView * (glm::dvec3(m[3]) - camera.position());
     first[l + 1] = first[l] + lists.lists[l].triangles.size();
   }
-  const uint64_t total = first.back();
-  counts_.triangles = total;
   const PassGeometry geometry(camera, fb.width, fb.height, farClip);
-  // At least ~8 chunks per thread, so that a short list (the near pass) is shared evenly.
-  const uint64_t chunk = std::clamp<uint64_t>(total / (8 * uint64_t(threads)), 256, 2048);
   constexpr size_t kPrefetch = 8;  // triangles ahead
-  const long chunks = long((total + chunk - 1) / chunk);
-  uint64_t setUp = 0, clipped = 0;
-
   // Set-up: transform, clip, snap, bin to bands (per thread, so no locks).
-#pragma omp parallel num_threads(threads) reduction(+ : setUp, clipped)
-  {
-    Binner binner{geometry, bins_[size_t(omp_get_thread_num())], {}};
-#pragma omp for schedule(dynamic, 1)
-    for (long c = 0; c < chunks; ++c) {
-      const uint64_t begin = uint64_t(c) * chunk, end = std::min(total, begin + chunk);
-      // The last list starting at or before begin (empty lists share their start).
-      size_t l = size_t(std::upper_bound(first.begin(), first.end(), begin) - first.begin()) - 1;
-      for (uint64_t g = begin; g < end; g = first[++l]) {
-        // The chunk's part of list l, with its per-list data hoisted out of the triangle loop.
-        const DrawList& list = lists.lists[l];
-        const uint32_t* tris = list.triangles.data();
-        const size_t n = list.triangles.size(),
-                     iEnd = size_t(std::min(end, first[l + 1]) - first[l]);
-        const glm::vec3* pos = scene.nodes[list.node].mesh.positions.data();
-        const ViewTransform& xf = transforms[l];
-        for (size_t i = size_t(g - first[l]); i < iEnd; ++i) {
-          // Triangles are scattered over the mesh: fetch a later one's vertices ahead.
-          if (i + kPrefetch < n) {
-            const char* p = reinterpret_cast<const char*>(pos + 3 * size_t(tris[i + kPrefetch]));
-            __builtin_prefetch(p);
-            __builtin_prefetch(p + sizeof(glm::vec3[3]) - 1);
-          }
-          const uint32_t tri = tris[i];
-          const glm::vec3* corner = pos + 3 * size_t(tri);
-          glm::dvec3 view[3];
-          for (int k = 0; k < 3; ++k) view[k] = xf.a * glm::dvec3(corner[k]) + xf.b;
-          binner.add(view, list.idBase + tri);
-        }
-      }
-    }
-    setUp += binner.setUp;
-    clipped += binner.clipped;
-  }
-  counts_.setUp = setUp;
-  counts_.clipped = clipped;
+  binChunks(first, geometry, threads, bins_, counts_,
+            [&](Binner& binner, size_t l, size_t from, size_t to) {
+              // The chunk's part of list l, with its per-list data hoisted out of the loop.
+              const DrawList& list = lists.lists[l];
+              const uint32_t* tris = list.triangles.data();
+              const size_t n = list.triangles.size();
+              const glm::vec3* pos = scene.nodes[list.node].mesh.positions.data();
+              const ViewTransform& xf = transforms[l];
+              for (size_t i = from; i < to; ++i) {
+                // Triangles are scattered over the mesh: fetch a later one's vertices ahead.
+                if (i + kPrefetch < n) {
+                  const char* p =
+                      reinterpret_cast<const char*>(pos + 3 * size_t(tris[i + kPrefetch]));
+                  __builtin_prefetch(p);
+                  __builtin_prefetch(p + sizeof(glm::vec3[3]) - 1);
+                }
+                const uint32_t tri = tris[i];
+                const glm::vec3* corner = pos + 3 * size_t(tri);
+                glm::dvec3 view[3];
+                for (int k = 0; k < 3; ++k) view[k] = xf.a * glm::dvec3(corner[k]) + xf.b;
+                binner.add(view, list.idBase + tri);
+              }
+            });
   counts_.fragments = rasterizeBins(threads, open.empty() ? nullptr : open.data(),
                                     geometry.farDepth, fb);
 }
@@ -397,39 +408,20 @@ void NativeRasterizer::drawSoup(const Camera& camera, const TriangleSoup& soup, 
   std::vector<uint64_t> first(soup.ranges.size() + 1, 0);
   for (size_t r = 0; r < soup.ranges.size(); ++r)
     first[r + 1] = first[r] + (soup.ranges[r].end - soup.ranges[r].begin);
-  const uint64_t total = first.back();
-  counts_.triangles = total;
   const PassGeometry geometry(camera, fb.width, fb.height, 0.0);
   const glm::dmat3 toView =
       glm::transpose(glm::dmat3(camera.right(), camera.up(), camera.forward()));
   const glm::dvec3 eye = camera.position();
-  const uint64_t chunk = std::clamp<uint64_t>(total / (8 * uint64_t(threads)), 256, 2048);
-  const long chunks = long((total + chunk - 1) / chunk);
-  uint64_t setUp = 0, clipped = 0;
-#pragma omp parallel num_threads(threads) reduction(+ : setUp, clipped)
-  {
-    Binner binner{geometry, bins_[size_t(omp_get_thread_num())], {}};
-#pragma omp for schedule(dynamic, 1)
-    for (long c = 0; c < chunks; ++c) {
-      const uint64_t begin = uint64_t(c) * chunk, end = std::min(total, begin + chunk);
-      size_t r = size_t(std::upper_bound(first.begin(), first.end(), begin) - first.begin()) - 1;
-      for (uint64_t g = begin; g < end; g = first[++r]) {
-        const uint64_t base = soup.ranges[r].begin - first[r];
-        const uint64_t iEnd = std::min(end, first[r + 1]);
-        for (uint64_t i = g; i < iEnd; ++i) {
-          const uint64_t tri = base + i;
-          glm::dvec3 view[3];
-          for (int k = 0; k < 3; ++k)
-            view[k] = toView * (glm::dvec3(soup.positions[3 * tri + size_t(k)]) - eye);
-          binner.add(view, soup.ids[tri]);
-        }
-      }
-    }
-    setUp += binner.setUp;
-    clipped += binner.clipped;
-  }
-  counts_.setUp = setUp;
-  counts_.clipped = clipped;
+  binChunks(first, geometry, threads, bins_, counts_,
+            [&](Binner& binner, size_t r, size_t from, size_t to) {
+              for (size_t i = from; i < to; ++i) {
+                const uint64_t tri = soup.ranges[r].begin + i;
+                glm::dvec3 view[3];
+                for (int k = 0; k < 3; ++k)
+                  view[k] = toView * (glm::dvec3(soup.positions[3 * tri + size_t(k)]) - eye);
+                binner.add(view, soup.ids[tri]);
+              }
+            });
   counts_.fragments = rasterizeBins(threads, nullptr, geometry.farDepth, fb);
 }
 
