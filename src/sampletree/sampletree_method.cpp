@@ -1,6 +1,7 @@
 #include "src/sampletree/sampletree_method.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "src/core/error.hpp"
@@ -13,6 +14,13 @@ namespace lzb {
 namespace {
 
 constexpr double kMaxCacheMb = 1099511627776.0;  // 2^40 MiB, as rzb's: its bytes fit an integer
+
+// 1e+300 rather than 301 digits.
+std::string shortNumber(double v) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", v);
+  return text;
+}
 
 class SampleTreeMethod : public Method {
  public:
@@ -63,7 +71,7 @@ class SampleTreeMethod : public Method {
   }
   void validateCache() const {
     require(std::isfinite(st_.cacheMb) && st_.cacheMb >= 0.0 && st_.cacheMb <= kMaxCacheMb,
-            "--cache-mb", "must be 0 (no cache) or a budget in MiB up to 2^40, got " + std::to_string(st_.cacheMb));
+            "--cache-mb", "must be 0 (no cache) or a budget in MiB up to 2^40, got " + shortNumber(st_.cacheMb));
     require(st_.cacheMb == 0.0 || !st_.treePath.empty(), "--cache-mb",
             "the sample tree's node cache needs a store (--tree); a tree built in memory is "
             "resident whole");
