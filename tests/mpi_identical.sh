@@ -5,6 +5,7 @@
 # sums to the 1-rank count, and when there is sizeable work, at least two ranks did some of it.
 # usage: mpi_identical.sh LZB_BINARY WORK_DIR MPIEXEC METHOD COUNTS [DATA_DIR] [EXTRA ARGS...]
 #   COUNTS: comma-separated report counts that measure the split work (e.g. rays_cast)
+#   EXTRA ARGS: an argument @store becomes a sample tree store of the scene, built first
 set -euo pipefail
 lzb="$1" work="$2" mpiexec="$3" method="$4" counts="$5" data="${6:-}"
 shift 6 || shift $#
@@ -18,7 +19,15 @@ case "$method" in
 esac
 i=0
 for scene in "${scenes[@]}"; do
-  args=(render "$scene" --method "$method" --reference "$reference" "${extra[@]}" --frames 2
+  run_extra=()
+  for a in "${extra[@]}"; do
+    if [ "$a" = "@store" ]; then
+      a="$work/store_$i.lzbtree"
+      "$lzb" build-tree "$scene" --out "$a" --leaf-triangles 8 --quiet >/dev/null
+    fi
+    run_extra+=("$a")
+  done
+  args=(render "$scene" --method "$method" --reference "$reference" "${run_extra[@]}" --frames 2
         --width 160 --height 120 --quiet)
   "$lzb" "${args[@]}" --threads 2 --out "$work/one_$i" >/dev/null
   "$lzb" "${args[@]}" --threads 1 --out "$work/thread_$i" >/dev/null

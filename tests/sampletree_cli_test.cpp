@@ -2,6 +2,9 @@
 // --tree` reads (the same image as the tree built in memory), damaged stores are refused with
 // exit status 2 naming the store and nothing written, and the accuracy against raycast on a
 // scanned mesh.
+#include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -95,6 +98,77 @@ TEST(SampleTreeCli, DamagedStoresAreRefused) {
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find(store.string()), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
+}
+
+// Out of core (--cache-mb > 0): the same files as the store read whole, with a big cache and with
+// one that holds only the largest node (the frames stream through it).
+TEST(SampleTreeCli, OutOfCoreRendersLikeTheStoreReadWhole) {
+  const fs::path dir = freshDir("sampletree_ooc");
+  const fs::path store = buildStore(dir, kScene, "--leaf-triangles 8");
+  const std::string render = "render " + kScene + " --method sampletree --tree " + store.string() +
+                             " --splat 2" + kView + " --out ";
+  const RunResult whole = runLzb(render + (dir / "whole").string());
+  ASSERT_EQ(whole.status, 0) << whole.output;
+  const RunResult big = runLzb(render + (dir / "big").string() + " --cache-mb 64 --cache-levels 2");
+  ASSERT_EQ(big.status, 0) << big.output;
+  const nlohmann::json rep = readJson(dir / "big" / "report.json");
+  const double largest = rep["setup"]["counts"]["largest_node_bytes"].get<double>();
+  char mb[64];
+  std::snprintf(mb, sizeof(mb), "%.17g", (largest + 1.0) / (1024.0 * 1024.0));
+  const RunResult tiny = runLzb(render + (dir / "tiny").string() + " --cache-mb " + mb);
+  ASSERT_EQ(tiny.status, 0) << tiny.output;
+  for (const char* run : {"big", "tiny"})
+    for (const char* f : {"frame_0000.exr", "frame_0001.exr", "frame_0000.png", "frame_0001.png"})
+      EXPECT_EQ(readBytes(dir / run / f), readBytes(dir / "whole" / f)) << run << " " << f;
+  const nlohmann::json& frame = rep["frames"][0]["counts"];
+  EXPECT_GT(frame["nodes_loaded"].get<double>(), 0.0) << frame.dump();
+  // Frame 0 loads every node it draws (44 bytes a triangle), and what its prefetch loaded so far.
+  const double bytes = frame["bytes_read"].get<double>();
+  EXPECT_GE(bytes, 44.0 * frame["triangles_drawn"].get<double>()) << frame.dump();
+  EXPECT_EQ(std::fmod(bytes, 44.0), 0.0) << frame.dump();
+  const nlohmann::json tinyRep = readJson(dir / "tiny" / "report.json");
+  EXPECT_GT(tinyRep["frames"][0]["counts"]["draw_batches"].get<double>(), 1.0);
+  // Below the largest node: refused before rendering.
+  std::snprintf(mb, sizeof(mb), "%.17g", (largest / 2) / (1024.0 * 1024.0));
+  const RunResult refused = runLzb(render + (dir / "refused").string() + " --cache-mb " + mb);
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_NE(refused.output.find("--cache-mb"), std::string::npos) << refused.output;
+  EXPECT_FALSE(fs::exists(dir / "refused"));
+  // A node cache for a tree built in memory is refused too.
+  const RunResult inMemory = runLzb("render " + kScene + " --method sampletree --cache-mb 8" + kView +
+                                    " --out " + (dir / "memory").string());
+  EXPECT_EQ(inMemory.status, 2) << inMemory.output;
+  EXPECT_NE(inMemory.output.find("--tree"), std::string::npos) << inMemory.output;
+}
+
+// A block of triangles corrupted in a store that opens soundly (header, block table, node table):
+// out of core the frame that reads it fails with exit status 2 naming the store, on 1 and on 2
+// ranks (every rank ends, no hang).
+TEST(SampleTreeCli, OutOfCoreCorruptionFoundAtRenderTimeEndsTheJob) {
+  const fs::path dir = freshDir("sampletree_ooc_corrupt");
+  const fs::path store = buildStore(dir, kScene, "--leaf-triangles 8");
+  std::vector<char> bytes = readBytes(store);
+  // Every byte of the triangle positions and IDs after the node table's blocks: whatever a frame
+  // draws is damaged, while the store still opens.
+  uint64_t nodes = 0;
+  std::memcpy(&nodes, bytes.data() + 16, 8);
+  uint64_t payload = 0;
+  std::memcpy(&payload, bytes.data() + 96, 8);
+  const uint64_t from = (nodes * 72 / 65536 + 1) * 65536;
+  const uint64_t to = payload - (payload - nodes * 72) / 48 * 4;  // before the colours
+  ASSERT_LT(from, to) << "the scene must span more blocks than the node table";
+  for (uint64_t at = from; at < to; at += 997) bytes[size_t(128 + at)] ^= 0x08;
+  writeBytes(store, bytes);
+  const std::string args = "render " + kScene + " --method sampletree --tree " + store.string() +
+                           " --cache-mb 64 --threads 1" + kView + " --out ";
+  const RunResult one = runLzb(args + (dir / "one").string());
+  EXPECT_EQ(one.status, 2) << one.output;
+  EXPECT_NE(one.output.find(store.string()), std::string::npos) << one.output;
+  EXPECT_NE(one.output.find("corrupted"), std::string::npos) << one.output;
+  const RunResult two = runLzb(args + (dir / "two").string(),
+                               "timeout 120 " + std::string(LZB_MPIEXEC) + " -n 2 --oversubscribe ");
+  EXPECT_EQ(two.status, 2) << two.output;
+  EXPECT_NE(two.output.find("corrupted"), std::string::npos) << two.output;
 }
 
 TEST(SampleTreeCli, BuildTreeRefusesBadInputAndWritesNothing) {

@@ -85,8 +85,10 @@ class RzbMethod : public Method {
                    "| auto (pixel for d = 1, else splat)")
         ->capture_default_str();
     app.add_option("--area-ratio", areaRatio_, "rzb: area class width, 2..64")->capture_default_str();
-    app.add_option("--cache-mb", cacheMb_, "rzb: sample cache budget in MiB (0: no cache)")
-        ->capture_default_str();
+    // The help names the sample tree too, which shares --cache-mb (0: no cache there as well).
+    addSharedOption(app, "--cache-mb", cacheMb_,
+                    "rzb: sample cache budget in MiB (0: no cache); sampletree (with --tree): node "
+                    "cache budget in MiB, rendering out of core (0: no cache, the store read whole)");
     addSharedOption(app, "--backfaces", backfaces_, "rzb, hybrid, surfels: drop | keep samples (surfels) on back faces");
   }
   void validate() override {

@@ -1,14 +1,26 @@
 #include "src/sampletree/sampletree_method.hpp"
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "src/core/error.hpp"
+#include "src/core/system.hpp"
 #include "src/sampletree/sampletree_renderer.hpp"
 #include "src/sampletree/tree_build.hpp"
 
 namespace lzb {
 
 namespace {
+
+constexpr double kMaxCacheMb = 1099511627776.0;  // 2^40 MiB, as rzb's: its bytes fit an integer
+
+// 1e+300 rather than 301 digits.
+std::string shortNumber(double v) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", v);
+  return text;
+}
 
 class SampleTreeMethod : public Method {
  public:
@@ -33,6 +45,14 @@ class SampleTreeMethod : public Method {
                    "sampletree: what a node where the traversal stops draws: splat (its "
                    "representative, section 4.5) | triangles (its own triangles, section 4.2)")
         ->capture_default_str();
+    // rzb adds --cache-mb first; 0 means no cache for both (here: the whole store read in memory).
+    addSharedOption(app, "--cache-mb", st_.cacheMb,
+                    "rzb: sample cache budget in MiB (0: no cache); sampletree (with --tree): node "
+                    "cache budget in MiB, rendering out of core (0: no cache, the store read whole)");
+    app.add_option("--cache-levels", st_.cacheLevels,
+                   "sampletree (with --tree and --cache-mb): levels below the nodes where the "
+                   "traversal stopped that a background thread prefetches (0: none)")
+        ->capture_default_str();
     app.add_option("--leaf-triangles", st_.leafTriangles,
                    "sampletree (in-memory build): octree cells with more triangles are split")
         ->capture_default_str();
@@ -47,13 +67,27 @@ class SampleTreeMethod : public Method {
     if (!st_.treePath.empty())
       require(std::filesystem::is_regular_file(st_.treePath), "--tree",
               st_.treePath + " is not a file");
+    validateCache();
+  }
+  void validateCache() const {
+    require(std::isfinite(st_.cacheMb) && st_.cacheMb >= 0.0 && st_.cacheMb <= kMaxCacheMb,
+            "--cache-mb", "must be 0 (no cache) or a budget in MiB up to 2^40, got " + shortNumber(st_.cacheMb));
+    require(st_.cacheMb == 0.0 || !st_.treePath.empty(), "--cache-mb",
+            "the sample tree's node cache needs a store (--tree); a tree built in memory is "
+            "resident whole");
+    require(st_.cacheLevels >= 0 && st_.cacheLevels <= 2, "--cache-levels",
+            "must be 0, 1 or 2 (section 6.2: j in {1, 2}), got " + std::to_string(st_.cacheLevels));
+    // A budget the process cannot hold is refused now, not when the cache fills.
+    requireMemory(uint64_t(st_.cacheMb * 1024.0 * 1024.0), "--cache-mb", "a node cache");
   }
   nlohmann::json parameters() const override {
     return {{"tree", st_.treePath.empty() ? "in memory" : st_.treePath},
             {"c", st_.c},
             {"splat", st_.splat},
             {"stop_draw", stopDraw_},
-            {"leaf_triangles", st_.leafTriangles}};
+            {"leaf_triangles", st_.leafTriangles},
+            {"cache_mb", st_.cacheMb},
+            {"cache_levels", st_.cacheLevels}};
   }
   std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const override {
     return std::make_unique<sampletree::SampleTreeRenderer>(scene, options, st_);

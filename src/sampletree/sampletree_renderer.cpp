@@ -1,5 +1,7 @@
 #include "src/sampletree/sampletree_renderer.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -32,6 +34,20 @@ uint64_t splatNodes(const SampleTree& tree, const std::vector<uint32_t>& nodes,
   return splatter.splatted();
 }
 
+// What this rank prefetches: below the stops inside the preorder span of its share (the nodes
+// near its own; every rank traverses alike, so the shares of the next frame lie close by).
+std::vector<uint32_t> prefetchOfShare(const SampleTree& tree, const Traversal& walk,
+                                      const std::vector<uint32_t>& splats,
+                                      const std::vector<uint32_t>& drawn, int levels) {
+  uint32_t lo = UINT32_MAX, hi = 0;
+  for (const auto* list : {&splats, &drawn})
+    if (!list->empty()) lo = std::min(lo, list->front()), hi = std::max(hi, list->back());
+  std::vector<uint32_t> mine;
+  for (uint32_t s : walk.stops)
+    if (s >= lo && s <= hi) mine.push_back(s);
+  return belowStops(tree, mine, levels);
+}
+
 }  // namespace
 
 SampleTreeRenderer::SampleTreeRenderer(const Scene& scene, const RenderOptions& options,
@@ -41,20 +57,43 @@ SampleTreeRenderer::SampleTreeRenderer(const Scene& scene, const RenderOptions& 
   if (st.treePath.empty()) {
     tree_ = buildTree(scene, TreeParams{st.c, options.seed, st.leafTriangles}, options.threads);
     setup_.addStage("build_tree", clock.lap());
+  } else if (st.cacheMb > 0.0) {
+    openStore();
+    setup_.addStage("read_node_table", clock.lap());
   } else {
     tree_ = readTree(st.treePath);
-    require(tree_.sceneTriangles == scene.expandedTriangles(), st.treePath + " (sample tree store)",
-            "built from a scene of " + std::to_string(tree_.sceneTriangles) +
-                " expanded triangles, but " + scene.source + " has " +
-                std::to_string(scene.expandedTriangles()));
     setup_.addStage("read_tree", clock.lap());
   }
+  if (!store_) treeTriangles_ = tree_.triangles(), treeBytes_ = storeBytes(tree_);
+  if (!st.treePath.empty())
+    require(tree().sceneTriangles == scene.expandedTriangles(), st.treePath + " (sample tree store)",
+            "built from a scene of " + std::to_string(tree().sceneTriangles) +
+                " expanded triangles, but " + scene.source + " has " +
+                std::to_string(scene.expandedTriangles()));
   // The construction's own c and seed: a store's, whatever --c and --seed say.
-  setup_.setShared("tree_c", tree_.params.c);
-  setup_.setShared("tree_seed", double(tree_.params.seed));
-  setup_.setShared("tree_nodes", double(tree_.nodes.size()));
-  setup_.setShared("tree_triangles", double(tree_.triangles()));
-  setup_.setShared("tree_bytes", double(storeBytes(tree_)));
+  setup_.setShared("tree_c", tree().params.c);
+  setup_.setShared("tree_seed", double(tree().params.seed));
+  setup_.setShared("tree_nodes", double(tree().nodes.size()));
+  setup_.setShared("tree_triangles", double(treeTriangles_));
+  setup_.setShared("tree_bytes", double(treeBytes_));
+}
+
+// Out of core: the node table resident, a cache within --cache-mb for the triangles.
+void SampleTreeRenderer::openStore() {
+  store_ = std::make_unique<StoreReader>(st_.treePath);
+  treeTriangles_ = store_->triangles();
+  treeBytes_ = store_->fileBytes();
+  const uint64_t budget = uint64_t(st_.cacheMb * 1024.0 * 1024.0);
+  uint64_t largest = 0;
+  for (const TreeNode& n : store_->table().nodes) largest = std::max(largest, payloadBytes(n));
+  // Streaming needs each node whole in the cache: a smaller budget can never draw the largest.
+  require(largest <= budget, "--cache-mb",
+          "a node cache of " + std::to_string(budget) + " bytes cannot hold the largest node of " +
+              st_.treePath + " (" + std::to_string(largest) + " bytes of triangles; at least " +
+              std::to_string(std::ceil(double(largest) / 1048576.0 * 1e6) / 1e6) + " MiB)");
+  cache_ = std::make_unique<NodeCache>(*store_, budget);
+  setup_.setShared("cache_budget_bytes", double(budget));
+  setup_.setShared("largest_node_bytes", double(largest));
 }
 
 std::string SampleTreeRenderer::decomposition() const {
@@ -67,23 +106,30 @@ std::string SampleTreeRenderer::decomposition() const {
 void SampleTreeRenderer::render(const Camera& camera, int /*frame*/, const WorkShare& share,
                                 Framebuffer& fb, FrameStats& stats) {
   Stopwatch clock;
-  const Traversal walk = traverse(tree_, camera, st_.splat, st_.stopDraw);
+  const SampleTree& tree = this->tree();
+  if (cache_) cache_->beginFrame();
+  const Traversal walk = traverse(tree, camera, st_.splat, st_.stopDraw);
   std::vector<double> costs;
   costs.reserve(walk.visits.size());
   for (const Visit& v : walk.visits)
-    costs.push_back(v.splat ? 1.0 : double(tree_.nodes[v.node].triangleCount));
+    costs.push_back(v.splat ? 1.0 : double(tree.nodes[v.node].triangleCount));
   std::vector<SoupRange> ranges;
-  std::vector<uint32_t> splats;
+  std::vector<uint32_t> splats, drawn;
   uint64_t triangles = 0;
   for (uint32_t k : dealByCost(costs, share)) {
     const Visit& v = walk.visits[k];
-    const TreeNode& n = tree_.nodes[v.node];
+    const TreeNode& n = tree.nodes[v.node];
     if (v.splat) {
       splats.push_back(v.node);
     } else {
       ranges.push_back({n.firstTriangle, n.firstTriangle + n.triangleCount});
+      drawn.push_back(v.node);
       triangles += n.triangleCount;
     }
+  }
+  if (cache_ && st_.cacheLevels > 0) {
+    cache_->touch(drawn);  // the prefetch, running from now on, must not evict them
+    cache_->prefetch(prefetchOfShare(tree, walk, splats, drawn, st_.cacheLevels));
   }
   stats.addStage("traverse", clock.lap());
 
@@ -92,30 +138,50 @@ void SampleTreeRenderer::render(const Camera& camera, int /*frame*/, const WorkS
   const SplatSetup setup = SplatSetup::from(camera, st_.splat);
   uint64_t splatted = 0;
   if (keys_.wide())
-    splatted = st_.splat == 1 ? splatNodes<true, true>(tree_, splats, camera, setup, keys_)
-                              : splatNodes<true, false>(tree_, splats, camera, setup, keys_);
+    splatted = st_.splat == 1 ? splatNodes<true, true>(tree, splats, camera, setup, keys_)
+                              : splatNodes<true, false>(tree, splats, camera, setup, keys_);
   else
-    splatted = st_.splat == 1 ? splatNodes<false, true>(tree_, splats, camera, setup, keys_)
-                              : splatNodes<false, false>(tree_, splats, camera, setup, keys_);
+    splatted = st_.splat == 1 ? splatNodes<false, true>(tree, splats, camera, setup, keys_)
+                              : splatNodes<false, false>(tree, splats, camera, setup, keys_);
   keys_.resolve(fb, options_.threads);
   stats.addStage("splat", clock.lap());
 
   // The native z-buffer keeps the nearer (depth, ID) against the splats already in fb.
-  raster_.drawSoup(camera, TriangleSoup{tree_.positions, tree_.ids, ranges}, options_.threads, fb);
+  if (cache_)
+    stats.addCount("draw_batches", double(drawPaged(*cache_, tree, drawn, camera, options_.threads,
+                                                    raster_, staging_, fb)));
+  else
+    raster_.drawSoup(camera, TriangleSoup{tree_.positions, tree_.ids, ranges}, options_.threads, fb);
   stats.addStage("triangles", clock.lap());
 
   stats.setShared("approximated_pixels",
                   double(approximatedPixels(
-                      tree_, walk.stops, camera, st_.stopDraw == StopDraw::kSplat ? st_.splat : 0)));
+                      tree, walk.stops, camera, st_.stopDraw == StopDraw::kSplat ? st_.splat : 0)));
   stats.addStage("approximated", clock.lap());
   stats.setShared("nodes_visited", double(walk.visited));
   stats.setShared("nodes_stopped", double(walk.stops.size()));
   stats.setShared("subtrees_culled", double(walk.culled));
-  stats.setShared("tree_bytes", double(storeBytes(tree_)));
+  stats.setShared("tree_bytes", double(treeBytes_));
   stats.addCount("nodes_drawn", double(ranges.size()));
   stats.addCount("triangles_drawn", double(triangles));
   stats.addCount("splats_drawn", double(splats.size()));
   stats.addCount("splats_in_image", double(splatted));
+  if (cache_) reportCache(stats);
+}
+
+// Per rank, summed in the report: what the cache did since the last frame's report (prefetch
+// loads finishing between frames count in the next frame).
+void SampleTreeRenderer::reportCache(FrameStats& stats) {
+  cache_->check();  // a damaged block met by the prefetch fails this frame
+  const CacheCounters c = cache_->takeCounters();
+  stats.addCount("nodes_loaded", double(c.nodesLoaded));
+  stats.addCount("nodes_prefetched", double(c.nodesPrefetched));
+  stats.addCount("bytes_read", double(c.bytesRead));
+  stats.addCount("file_bytes_read", double(c.fileBytesRead));
+  stats.addCount("cache_hits", double(c.hits));
+  stats.addCount("nodes_evicted", double(c.evicted));
+  stats.addCount("load_wait_seconds", c.waitSeconds);
+  stats.addCount("cache_bytes", double(cache_->residentBytes()));
 }
 
 }  // namespace lzb::sampletree

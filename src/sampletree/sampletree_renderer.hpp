@@ -3,13 +3,18 @@
 // (traversal.hpp); the visited nodes, in preorder, are dealt to ranks as runs of equal cost
 // (dealByCost: a node costs its triangles, a splat 1); each rank draws its nodes' triangles with
 // the native z-buffer and its splats with the splatting core into one key buffer, so compositing
-// the ranks by (depth, ID) gives the 1-rank image for any rank or thread count.
+// the ranks by (depth, ID) gives the 1-rank image for any rank or thread count. Out of core
+// (a store and cacheMb > 0) only the node table is resident: the drawn nodes' triangles come
+// from the node cache (node_cache.hpp, paged_draw.hpp), the same image as in core.
 #include <memory>
 #include <string>
 
 #include "src/core/depth_key.hpp"
 #include "src/core/renderer.hpp"
+#include "src/sampletree/node_cache.hpp"
+#include "src/sampletree/paged_draw.hpp"
 #include "src/sampletree/sample_tree.hpp"
+#include "src/sampletree/store_reader.hpp"
 #include "src/sampletree/traversal.hpp"
 #include "src/zbuffer/native_raster.hpp"
 
@@ -21,6 +26,8 @@ struct SampleTreeOptions {
   int splat = 1;  // stop at cells of at most splat^2 pixels, drawn as splat x splat splats
   uint32_t leafTriangles = 32;
   StopDraw stopDraw = StopDraw::kSplat;  // what a stopped node draws
+  double cacheMb = 0.0;  // with treePath: > 0 renders out of core with a node cache this big
+  int cacheLevels = 1;   // out of core: levels below the stops prefetched (0: none)
 };
 
 class SampleTreeRenderer : public Renderer {
@@ -33,13 +40,23 @@ class SampleTreeRenderer : public Renderer {
   void render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
               FrameStats& stats) override;
   FrameStats setupStats() const override { return setup_; }
-  const SampleTree& tree() const { return tree_; }
+  // The tree; out of core its nodes only (no triangles).
+  const SampleTree& tree() const { return store_ ? store_->table() : tree_; }
+  // Out of core: the node cache (tests wait for its prefetch); null in core.
+  NodeCache* cache() { return cache_.get(); }
 
  private:
+  void openStore();
+  void reportCache(FrameStats& stats);
+
   const Scene& scene_;
   RenderOptions options_;
   SampleTreeOptions st_;
-  SampleTree tree_;
+  SampleTree tree_;  // in core
+  uint64_t treeTriangles_ = 0, treeBytes_ = 0;
+  std::unique_ptr<StoreReader> store_;  // out of core
+  std::unique_ptr<NodeCache> cache_;    // after store_: it stops before the store closes
+  SoupStaging staging_;
   FrameStats setup_;
   NativeRasterizer raster_;
   KeyBuffer keys_;

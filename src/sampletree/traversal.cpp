@@ -61,4 +61,19 @@ Traversal traverse(const SampleTree& tree, const Camera& camera, int splat, Stop
   return out;
 }
 
+std::vector<uint32_t> belowStops(const SampleTree& tree, const std::vector<uint32_t>& stops,
+                                 int levels) {
+  std::vector<uint32_t> out;
+  for (uint32_t s : stops) {
+    const TreeNode& stop = tree.nodes[s];
+    const int deepest = int(stop.level) + levels;
+    for (uint32_t i = s; i < stop.subtreeEnd;) {
+      const TreeNode& n = tree.nodes[i];
+      if (n.triangleCount > 0) out.push_back(i);
+      i = int(n.level) >= deepest ? n.subtreeEnd : i + 1;  // skip what lies deeper
+    }
+  }
+  return out;
+}
+
 }  // namespace lzb::sampletree

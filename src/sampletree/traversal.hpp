@@ -35,4 +35,10 @@ enum class StopDraw { kSplat, kTriangles };
 Traversal traverse(const SampleTree& tree, const Camera& camera, int splat,
                    StopDraw stopDraw = StopDraw::kSplat);
 
+// Section 6.2's prefetch: the nodes with triangles among each stop and the `levels` levels below
+// it, in preorder: what the next frames draw when the viewer comes closer (a stop that drew a
+// splat draws its own triangles first, then its children).
+std::vector<uint32_t> belowStops(const SampleTree& tree, const std::vector<uint32_t>& stops,
+                                 int levels);
+
 }  // namespace lzb::sampletree

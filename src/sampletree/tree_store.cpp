@@ -9,36 +9,15 @@
 #include "src/core/atomic_file.hpp"
 #include "src/core/error.hpp"
 #include "src/sampletree/crc32c.hpp"
+#include "src/sampletree/store_format.hpp"
 
 namespace lzb::sampletree {
 
 namespace {
 
-constexpr char kMagic[8] = {'L', 'Z', 'B', 'S', 'T', 'R', 'E', 'E'};
-
-struct Header {
-  char magic[8];
-  uint32_t version;
-  uint32_t blockSize;
-  uint64_t nodes, triangles, sceneTriangles;
-  double c;
-  uint64_t seed;
-  uint32_t leafTriangles;
-  uint32_t reserved0;
-  double origin[3];
-  double size;
-  uint64_t payloadBytes;
-  uint64_t reserved1[2];
-  uint32_t tableCrc;
-  uint32_t headerCrc;  // of the bytes before it
-};
-static_assert(sizeof(Header) == kStoreHeaderBytes, "the header is 128 bytes");
-
-uint64_t payloadBytes(uint64_t nodes, uint64_t triangles) {
-  return nodes * sizeof(TreeNode) + triangles * (3 * sizeof(glm::vec3) + sizeof(uint64_t) + sizeof(Rgba8));
-}
-
-uint64_t blockCount(uint64_t payload) { return (payload + kStoreBlock - 1) / kStoreBlock; }
+using format::blockCount;
+using format::Header;
+using format::payloadBytes;
 
 // Writes the payload in blocks, keeping each block's CRC.
 class BlockWriter {
@@ -114,7 +93,7 @@ void appendArray(BlockWriter& w, const std::vector<T>& v) {
 
 Header makeHeader(const SampleTree& tree) {
   Header h{};
-  std::memcpy(h.magic, kMagic, sizeof(kMagic));
+  std::memcpy(h.magic, format::kMagic, sizeof(format::kMagic));
   h.version = kStoreVersion;
   h.blockSize = kStoreBlock;
   h.nodes = tree.nodes.size();
@@ -155,37 +134,8 @@ Header readHeader(std::ifstream& in, uint64_t fileBytes, const std::string& wher
   Header h;
   in.read(reinterpret_cast<char*>(&h), sizeof(h));
   require(bool(in), where, "the header could not be read");
-  require(std::memcmp(h.magic, kMagic, sizeof(kMagic)) == 0, where,
-          "not a sample tree store (no LZBSTREE magic)");
-  require(h.version == kStoreVersion, where,
-          "store format version " + std::to_string(h.version) + ", this lzb reads version " +
-              std::to_string(kStoreVersion) + " (rebuild it with lzb build-tree)");
-  require(crc32c(&h, offsetof(Header, headerCrc)) == h.headerCrc, where,
-          "the header is corrupted: checksum mismatch");
-  require(h.blockSize == kStoreBlock, where, "block size " + std::to_string(h.blockSize) +
-                                                 ", expected " + std::to_string(kStoreBlock));
-  require(h.payloadBytes == payloadBytes(h.nodes, h.triangles), where,
-          "the header's sizes do not agree");
-  const uint64_t expected = kStoreHeaderBytes + h.payloadBytes + 4 * blockCount(h.payloadBytes);
-  require(fileBytes == expected, where,
-          (fileBytes < expected ? "truncated: " : "wrong size: ") + std::to_string(fileBytes) +
-              " bytes, the header says " + std::to_string(expected));
+  format::checkHeader(h, fileBytes, where);
   return h;
-}
-
-// The nodes fit together: preorder subtrees nest, triangle ranges tile the triangles in order.
-void checkNodes(const SampleTree& t, const std::string& where) {
-  uint64_t next = 0;
-  for (size_t i = 0; i < t.nodes.size(); ++i) {
-    const TreeNode& n = t.nodes[i];
-    const std::string node = "node " + std::to_string(i) + ": ";
-    require(n.subtreeEnd > i && n.subtreeEnd <= t.nodes.size(), where, node + "bad subtree end");
-    require(n.firstTriangle == next && n.triangleCount <= t.ids.size() - next, where,
-            node + "bad triangle range");
-    require(n.level <= 20, where, node + "bad level");
-    next += n.triangleCount;
-  }
-  require(next == t.ids.size(), where, "the nodes do not hold every triangle");
 }
 
 }  // namespace
@@ -228,7 +178,7 @@ SampleTree readTree(const std::string& path) {
   r.read(t.positions.data(), t.positions.size() * sizeof(glm::vec3));
   r.read(t.ids.data(), t.ids.size() * sizeof(uint64_t));
   r.read(t.colours.data(), t.colours.size() * sizeof(Rgba8));
-  checkNodes(t, where);
+  format::checkNodes(t.nodes, t.ids.size(), where);
   return t;
 }
 

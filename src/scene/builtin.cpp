@@ -17,7 +17,7 @@ void requireIdSpace(const BuiltinParams& params, const std::string& key, uint64_
 }
 
 std::vector<std::string> builtinNames() {
-  return {"chessboard", "city", "forest", "sphereflake", "replicated"};
+  return {"chessboard", "city", "forest", "sphereflake", "replicated", "landscape"};
 }
 
 Generated addBuiltin(Scene& scene, const std::string& spec, const std::filesystem::path& baseDir) {
@@ -28,6 +28,7 @@ Generated addBuiltin(Scene& scene, const std::string& spec, const std::filesyste
   if (name == "forest") return generateForest(scene, params);
   if (name == "sphereflake") return generateSphereflake(scene, params);
   if (name == "replicated") return generateReplicated(scene, params, baseDir);
+  if (name == "landscape") return generateLandscape(scene, params);
   std::string known;
   for (const std::string& n : builtinNames()) known += (known.empty() ? "" : ", ") + n;
   throw InputError("builtin:" + spec + ": unknown generator '" + name + "' (known: " + known + ")");

@@ -14,6 +14,7 @@ Generated generateChessboard(Scene& scene, BuiltinParams& params);
 Generated generateCity(Scene& scene, BuiltinParams& params);
 Generated generateForest(Scene& scene, BuiltinParams& params);
 Generated generateSphereflake(Scene& scene, BuiltinParams& params);
+Generated generateLandscape(Scene& scene, BuiltinParams& params);
 Generated generateReplicated(Scene& scene, BuiltinParams& params,
                              const std::filesystem::path& baseDir);
 

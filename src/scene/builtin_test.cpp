@@ -265,6 +265,25 @@ TEST(Forest, Deterministic) {
                           generate("forest?trees=10&levels=1&seed=6")));
 }
 
+// ---- landscape ----
+
+TEST(Landscape, EveryTriangleStoredAndDistinct) {
+  const Scene s = generate("landscape?objects=300&seed=4");
+  EXPECT_EQ(s.expandedTriangles(), s.uniqueTriangles()) << "no instances";
+  EXPECT_EQ(s.expandedTriangles(), 2u * 128 * 128 + 300u * 24);
+  // Distinct objects: no two triangles alike (centroid and colour, to 1e-4).
+  const auto all = worldTriangles(s);
+  EXPECT_EQ(std::adjacent_find(all.begin(), all.end()), all.end());
+  EXPECT_EQ(generate("landscape?objects=0").expandedTriangles(), 2u * 128 * 128);
+  EXPECT_NE(errorOf([] { generate("landscape?objects=-1"); }).find("objects"), std::string::npos);
+  EXPECT_NE(errorOf([] { generate("landscape?objects=5000000"); }).find("objects"), std::string::npos);
+}
+
+TEST(Landscape, Deterministic) {
+  EXPECT_TRUE(sameMeshes(generate("landscape?objects=50&seed=2"), generate("landscape?objects=50&seed=2")));
+  EXPECT_FALSE(sameMeshes(generate("landscape?objects=50&seed=2"), generate("landscape?objects=50&seed=3")));
+}
+
 // ---- replicated ----
 
 const char* kTetrahedron =

@@ -1,0 +1,216 @@
+#include "src/sampletree/node_cache.hpp"
+
+#include <stdexcept>
+#include <string>
+
+#include "src/core/timer.hpp"
+
+namespace lzb::sampletree {
+
+NodeCache::NodeCache(StoreReader& store, uint64_t budgetBytes)
+    : store_(store), budget_(budgetBytes), fileBytesSeen_(store.fileBytesRead()) {
+  loader_ = std::thread(&NodeCache::loaderLoop, this);
+}
+
+NodeCache::~NodeCache() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+  }
+  work_.notify_all();
+  loader_.join();
+}
+
+void NodeCache::beginFrame() {
+  std::lock_guard lock(mutex_);
+  ++frame_;
+  prefetch_.clear();
+}
+
+std::vector<const NodePayload*> NodeCache::acquire(std::span<const uint32_t> nodes) {
+  std::unique_lock lock(mutex_);
+  rethrowLocked();
+  uint64_t missing = 0;
+  for (uint32_t n : nodes) {
+    auto [it, fresh] = entries_.try_emplace(n);
+    Entry& e = it->second;
+    if (fresh) {
+      demand_.push_back(n);
+      ++missing;
+    } else if (e.state == State::kResident) {
+      if (e.pins == 0) lru_.erase(LruKey{e.frame, e.seq, n});
+      ++counters_.hits;
+    } else {
+      ++missing;  // being prefetched now
+    }
+    ++e.pins;
+  }
+  if (missing > 0) {
+    Stopwatch wait;
+    awaited_ = missing;
+    work_.notify_one();
+    loaded_.wait(lock, [&] { return error_ || awaited_ == 0; });
+    counters_.waitSeconds += wait.seconds();
+  }
+  rethrowLocked();
+  std::vector<const NodePayload*> out;
+  out.reserve(nodes.size());
+  for (uint32_t n : nodes) out.push_back(entries_.at(n).payload.get());
+  return out;
+}
+
+void NodeCache::release(std::span<const uint32_t> nodes) {
+  std::lock_guard lock(mutex_);
+  for (uint32_t n : nodes) {
+    Entry& e = entries_.at(n);
+    if (--e.pins == 0 && e.state == State::kResident) unpinToLru(n, e);
+  }
+}
+
+void NodeCache::touch(std::span<const uint32_t> nodes) {
+  std::lock_guard lock(mutex_);
+  for (uint32_t n : nodes) {
+    const auto it = entries_.find(n);
+    if (it == entries_.end() || it->second.state != State::kResident || it->second.pins > 0) continue;
+    lru_.erase(LruKey{it->second.frame, it->second.seq, n});
+    unpinToLru(n, it->second);
+  }
+}
+
+void NodeCache::prefetch(std::vector<uint32_t> nodes) {
+  {
+    std::lock_guard lock(mutex_);
+    prefetch_.assign(nodes.begin(), nodes.end());
+  }
+  work_.notify_one();
+}
+
+void NodeCache::drain() {
+  std::unique_lock lock(mutex_);
+  loaded_.wait(lock, [&] { return error_ || (demand_.empty() && prefetch_.empty() && !busy_); });
+  rethrowLocked();
+}
+
+void NodeCache::check() {
+  std::lock_guard lock(mutex_);
+  rethrowLocked();
+}
+
+CacheCounters NodeCache::takeCounters() {
+  std::lock_guard lock(mutex_);
+  CacheCounters c = counters_;
+  const uint64_t read = store_.fileBytesRead();
+  c.fileBytesRead = read - fileBytesSeen_;
+  fileBytesSeen_ = read;
+  counters_ = {};
+  return c;
+}
+
+uint64_t NodeCache::residentBytes() const {
+  std::lock_guard lock(mutex_);
+  return used_;
+}
+
+void NodeCache::loaderLoop() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    uint32_t node = 0;
+    bool demand = false;
+    if (!nextJob(lock, node, demand)) return;
+    lock.unlock();
+    std::unique_ptr<NodePayload> payload;
+    std::exception_ptr error;
+    try {
+      payload = std::make_unique<NodePayload>(store_.read(node));
+    } catch (...) {
+      error = std::current_exception();
+    }
+    lock.lock();
+    busy_ = false;
+    if (error) {  // the store is damaged: every later acquire fails with this error
+      error_ = error;
+      loaded_.notify_all();
+      return;
+    }
+    finishLoad(node, std::move(payload), demand);
+    loaded_.notify_all();
+  }
+}
+
+// The next node to load, its bytes reserved: demand first, then prefetch into room that older
+// frames leave. Waits while there is nothing to do; false when stopping or failed.
+bool NodeCache::nextJob(std::unique_lock<std::mutex>& lock, uint32_t& node, bool& demand) {
+  for (;;) {
+    if (stop_ || error_) return false;
+    if (!demand_.empty()) {
+      node = demand_.front();
+      demand_.pop_front();
+      demand = true;
+      const uint64_t bytes = payloadBytes(store_.table().nodes[node]);
+      if (!makeRoom(bytes, true)) {  // acquire() keeps a batch within the budget: a bug
+        error_ = std::make_exception_ptr(std::logic_error(
+            "node cache: no room for node " + std::to_string(node) + " within the budget"));
+        loaded_.notify_all();
+        return false;
+      }
+      used_ += bytes;
+      busy_ = true;
+      return true;
+    }
+    while (!prefetch_.empty()) {
+      node = prefetch_.front();
+      prefetch_.pop_front();
+      const uint64_t bytes = payloadBytes(store_.table().nodes[node]);
+      if (entries_.count(node) || !makeRoom(bytes, false)) continue;
+      entries_.try_emplace(node);
+      used_ += bytes;
+      busy_ = true;
+      demand = false;
+      return true;
+    }
+    loaded_.notify_all();  // idle: drain() may return
+    work_.wait(lock);
+  }
+}
+
+// Evicts least recently used unpinned nodes until `bytes` more fit; prefetch evicts only nodes
+// of earlier frames. False when that cannot make the room.
+bool NodeCache::makeRoom(uint64_t bytes, bool demand) {
+  if (bytes > budget_) return false;
+  while (used_ + bytes > budget_) {
+    if (lru_.empty()) return false;
+    const auto oldest = lru_.begin();
+    if (!demand && std::get<0>(*oldest) >= frame_) return false;
+    const uint32_t victim = std::get<2>(*oldest);
+    used_ -= payloadBytes(store_.table().nodes[victim]);
+    entries_.erase(victim);
+    lru_.erase(oldest);
+    ++counters_.evicted;
+  }
+  return true;
+}
+
+void NodeCache::finishLoad(uint32_t node, std::unique_ptr<NodePayload> payload, bool demand) {
+  Entry& e = entries_.at(node);
+  e.payload = std::move(payload);
+  e.state = State::kResident;
+  ++counters_.nodesLoaded;
+  counters_.nodesPrefetched += demand ? 0 : 1;
+  counters_.bytesRead += payloadBytes(store_.table().nodes[node]);
+  if (e.pins > 0)
+    --awaited_;  // the current acquire() waits for it
+  else
+    unpinToLru(node, e);
+}
+
+void NodeCache::unpinToLru(uint32_t node, Entry& e) {
+  e.frame = frame_;
+  e.seq = ++seq_;
+  lru_.insert(LruKey{e.frame, e.seq, node});
+}
+
+void NodeCache::rethrowLocked() {
+  if (error_) std::rethrow_exception(error_);
+}
+
+}  // namespace lzb::sampletree

@@ -1,0 +1,95 @@
+#pragma once
+// The node cache of section 6.2: node payloads (positions and IDs) loaded from the store on demand
+// by one background loader thread, within a byte budget. A frame acquires the nodes it draws
+// (the loader loads the missing ones first; the frame waits for them) and may queue nodes to
+// prefetch (loaded while the frame goes on, only into room that older frames' nodes leave).
+// Eviction: the least recently used frame's nodes first; nodes acquired and not yet released are
+// never evicted. A load that fails (a corrupted block) is rethrown by the next acquire or check.
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <span>
+#include <thread>
+#include <tuple>
+#include <unordered_map>
+#include <vector>
+
+#include "src/sampletree/store_reader.hpp"
+
+namespace lzb::sampletree {
+
+// What the cache did since the last takeCounters().
+struct CacheCounters {
+  uint64_t nodesLoaded = 0;     // demand and prefetch loads completed
+  uint64_t nodesPrefetched = 0;  // of which prefetch
+  uint64_t bytesRead = 0;       // the loaded nodes' payload bytes
+  uint64_t fileBytesRead = 0;   // bytes read from the store (whole checked blocks)
+  uint64_t hits = 0;            // acquired nodes already resident
+  uint64_t evicted = 0;
+  double waitSeconds = 0.0;     // the frame waiting in acquire()
+};
+
+class NodeCache {
+ public:
+  NodeCache(StoreReader& store, uint64_t budgetBytes);
+  ~NodeCache();
+  NodeCache(const NodeCache&) = delete;
+  NodeCache& operator=(const NodeCache&) = delete;
+
+  uint64_t budget() const { return budget_; }
+  // One frame thread calls beginFrame, acquire, release and prefetch.
+  // Starts a frame: drops the previous frame's prefetch queue; nodes used now count as this frame.
+  void beginFrame();
+  // Loads (waiting) and pins `nodes` (their payload bytes together at most the budget); the
+  // returned payloads stay valid until release(nodes).
+  std::vector<const NodePayload*> acquire(std::span<const uint32_t> nodes);
+  void release(std::span<const uint32_t> nodes);
+  // Marks the resident ones of `nodes` used in this frame, so this frame's prefetch spares them.
+  void touch(std::span<const uint32_t> nodes);
+  // Queues nodes for the loader after any demand (replacing the queue).
+  void prefetch(std::vector<uint32_t> nodes);
+  // Waits until the loader is idle; rethrows a failed load.
+  void drain();
+  // Rethrows a failed load, if any.
+  void check();
+  CacheCounters takeCounters();
+  uint64_t residentBytes() const;
+
+ private:
+  enum class State { kQueued, kResident };
+  struct Entry {
+    State state = State::kQueued;
+    std::unique_ptr<NodePayload> payload;
+    uint32_t pins = 0;
+    uint64_t frame = 0, seq = 0;  // last use: the LRU order
+  };
+  using LruKey = std::tuple<uint64_t, uint64_t, uint32_t>;  // (frame, seq, node)
+
+  void loaderLoop();
+  bool nextJob(std::unique_lock<std::mutex>& lock, uint32_t& node, bool& demand);
+  bool makeRoom(uint64_t bytes, bool demand);
+  void finishLoad(uint32_t node, std::unique_ptr<NodePayload> payload, bool demand);
+  void unpinToLru(uint32_t node, Entry& e);
+  void rethrowLocked();
+
+  StoreReader& store_;
+  const uint64_t budget_;
+  mutable std::mutex mutex_;
+  std::condition_variable work_, loaded_;
+  std::unordered_map<uint32_t, Entry> entries_;
+  std::set<LruKey> lru_;  // resident, unpinned
+  std::deque<uint32_t> demand_, prefetch_;
+  uint64_t used_ = 0, frame_ = 0, seq_ = 0;
+  uint64_t awaited_ = 0;        // nodes the current acquire() still waits for
+  uint64_t fileBytesSeen_ = 0;  // store_.fileBytesRead() at the last takeCounters()
+  bool busy_ = false, stop_ = false;
+  std::exception_ptr error_;
+  CacheCounters counters_;
+  std::thread loader_;  // last: started when everything above exists
+};
+
+}  // namespace lzb::sampletree

@@ -1,0 +1,245 @@
+// Rendering out of core (section 6.2): the node cache's frames equal the in-core renderer's for
+// any cache size (streaming when a frame does not fit), a block corrupted after opening is an
+// InputError naming the store at render time, and the cache's counters add up.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "src/core/error.hpp"
+#include "src/core/test_camera.hpp"
+#include "src/sampletree/sampletree_renderer.hpp"
+#include "src/sampletree/store_format.hpp"
+#include "src/sampletree/traversal.hpp"
+#include "src/sampletree/tree_build.hpp"
+#include "src/sampletree/tree_store.hpp"
+#include "src/scene/load.hpp"
+
+namespace lzb::sampletree {
+namespace {
+
+namespace fs = std::filesystem;
+constexpr int kW = 160, kH = 120;
+
+const Scene& flake() {
+  static const Scene scene = loadScene("builtin:sphereflake?depth=2", true);
+  return scene;
+}
+
+// The scene's tree in a store (leaves of 8 triangles: many nodes, several blocks).
+const fs::path& store() {
+  static const fs::path p = [] {
+    const fs::path dir = fs::temp_directory_path() / "lzb_out_of_core_test";
+    fs::create_directories(dir);
+    const fs::path file = dir / "flake.lzbtree";
+    writeTree(buildTree(flake(), TreeParams{13.8, 5, 8}, 2), file.string());
+    return file;
+  }();
+  return p;
+}
+
+// Cameras approaching the scene and turning: the frames of a walkthrough.
+std::vector<Camera> walk() {
+  const Bounds b = flake().bounds();
+  const double d = b.diagonal();
+  std::vector<Camera> out;
+  for (double k : {6.0, 2.5, 1.2, 0.8, 0.8})
+    out.push_back(testing_util::lookAtCamera(b.center() + glm::dvec3(0.3, 0.5, 1.0) * (k * d),
+                                             b.center() + glm::dvec3(0.05 * k * d, 0, 0),
+                                             0.01 * d, 20 * d, kW, kH));
+  return out;
+}
+
+SampleTreeOptions options(double cacheBytes, int splat = 1, int levels = 1) {
+  SampleTreeOptions st;
+  st.treePath = store().string();
+  st.splat = splat;
+  st.cacheMb = cacheBytes / (1024.0 * 1024.0);  // exact: a power-of-two division
+  st.cacheLevels = levels;
+  return st;
+}
+
+SampleTreeRenderer makeRenderer(const SampleTreeOptions& st, int threads = 2) {
+  RenderOptions o;
+  o.threads = threads;
+  return SampleTreeRenderer(flake(), o, st);
+}
+
+struct Frame {
+  Framebuffer fb{kW, kH};
+  FrameStats stats;
+  double count(const char* name) const { return stats.counts.value(name, 0.0); }
+};
+
+Frame renderFrame(SampleTreeRenderer& r, const Camera& camera, WorkShare share = {}) {
+  Frame f;
+  f.fb.clear();
+  r.render(camera, 0, share, f.fb, f.stats);
+  return f;
+}
+
+bool sameKeys(const Framebuffer& a, const Framebuffer& b) {
+  return a.id == b.id && std::memcmp(a.depth.data(), b.depth.data(), a.size() * 4) == 0;
+}
+
+uint64_t largestNode() {
+  uint64_t largest = 0;
+  for (const TreeNode& n : readTree(store().string()).nodes) largest = std::max(largest, payloadBytes(n));
+  return largest;
+}
+
+// Payload bytes of the nodes a frame draws triangles of (1 rank).
+uint64_t framePayload(const SampleTree& tree, const Camera& camera, int splat) {
+  uint64_t bytes = 0;
+  for (const Visit& v : traverse(tree, camera, splat).visits)
+    if (!v.splat) bytes += payloadBytes(tree.nodes[v.node]);
+  return bytes;
+}
+
+TEST(OutOfCore, FramesEqualTheInCoreRendererForEveryCacheSize) {
+  const std::vector<Camera> cameras = walk();
+  const SampleTree whole = readTree(store().string());
+  uint64_t biggestFrame = 0;
+  for (const Camera& c : cameras) biggestFrame = std::max(biggestFrame, framePayload(whole, c, 1));
+  const uint64_t largest = largestNode();
+  ASSERT_GT(biggestFrame, 3 * largest) << "the scene must not fit the smallest cache in one batch";
+  for (int splat : {1, 3}) {
+    SampleTreeOptions inCore = options(0, splat);
+    inCore.cacheMb = 0.0;
+    SampleTreeRenderer reference = makeRenderer(inCore);
+    ASSERT_EQ(reference.cache(), nullptr);
+    for (uint64_t budget : {uint64_t(64) << 20, biggestFrame / 2, largest}) {
+      SampleTreeRenderer paged = makeRenderer(options(double(budget), splat, 2));
+      ASSERT_NE(paged.cache(), nullptr);
+      double batches = 0;
+      for (size_t k = 0; k < cameras.size(); ++k) {
+        const Frame want = renderFrame(reference, cameras[k]);
+        const Frame got = renderFrame(paged, cameras[k]);
+        EXPECT_TRUE(sameKeys(want.fb, got.fb)) << "splat " << splat << ", budget " << budget << ", frame " << k;
+        EXPECT_EQ(got.count("triangles_drawn"), want.count("triangles_drawn"));
+        EXPECT_LE(got.count("cache_bytes"), double(budget));
+        batches = std::max(batches, got.count("draw_batches"));
+      }
+      if (budget == largest) {
+        EXPECT_GT(batches, 1.0) << "the smallest cache streams the frame";
+      }
+      if (budget == uint64_t(64) << 20) {
+        EXPECT_EQ(batches, 1.0);
+      }
+    }
+  }
+}
+
+TEST(OutOfCore, RankSharesCompositeToTheOneRankImage) {
+  const Camera camera = walk()[2];
+  SampleTreeRenderer one = makeRenderer(options(double(largestNode())), 1);
+  const Frame all = renderFrame(one, camera);
+  Framebuffer composite(kW, kH);
+  composite.clear();
+  for (int rank = 0; rank < 3; ++rank) {
+    SampleTreeRenderer part = makeRenderer(options(double(largestNode())), 1);
+    compositeNearer(composite, renderFrame(part, camera, WorkShare{rank, 3}).fb);
+  }
+  EXPECT_TRUE(sameKeys(all.fb, composite));
+}
+
+TEST(OutOfCore, CountersAddUpAndASecondFrameLoadsNothing) {
+  const Camera camera = walk()[2];
+  SampleTreeRenderer r = makeRenderer(options(64 << 20, 1, 0));
+  const Frame first = renderFrame(r, camera);
+  uint64_t payload = 0;
+  const SampleTree& table = r.tree();
+  for (const Visit& v : traverse(table, camera, 1).visits)
+    if (!v.splat) payload += payloadBytes(table.nodes[v.node]);
+  EXPECT_GT(first.count("nodes_loaded"), 10.0);
+  EXPECT_EQ(first.count("nodes_loaded"), first.count("nodes_drawn"));
+  EXPECT_EQ(first.count("bytes_read"), double(payload));
+  EXPECT_EQ(first.count("bytes_read"), 44.0 * first.count("triangles_drawn"));
+  EXPECT_GT(first.count("file_bytes_read"), 0.0);
+  EXPECT_EQ(first.count("cache_hits"), 0.0);
+  EXPECT_EQ(first.count("nodes_prefetched"), 0.0);
+  EXPECT_EQ(first.count("cache_bytes"), double(payload));
+  const Frame second = renderFrame(r, camera);
+  EXPECT_EQ(second.count("nodes_loaded"), 0.0);
+  EXPECT_EQ(second.count("bytes_read"), 0.0);
+  EXPECT_EQ(second.count("file_bytes_read"), 0.0);
+  EXPECT_EQ(second.count("cache_hits"), first.count("nodes_drawn"));
+  EXPECT_EQ(second.count("load_wait_seconds"), 0.0);
+  EXPECT_TRUE(sameKeys(first.fb, second.fb));
+}
+
+TEST(OutOfCore, PrefetchLoadsWhatTheNextFrameNeeds) {
+  const std::vector<Camera> cameras = walk();
+  double hits[3] = {0, 0, 0};
+  for (int levels : {0, 1, 2}) {
+    SampleTreeRenderer r = makeRenderer(options(64 << 20, 1, levels));
+    const Frame far = renderFrame(r, cameras[1]);
+    r.cache()->drain();  // what the frame queued is loaded
+    const CacheCounters between = r.cache()->takeCounters();
+    EXPECT_EQ(far.count("nodes_prefetched") + double(between.nodesPrefetched) > 0, levels > 0);
+    const Frame near = renderFrame(r, cameras[2]);
+    hits[levels] = near.count("cache_hits");
+    const double demanded = near.count("nodes_loaded") - near.count("nodes_prefetched");
+    if (levels == 0)
+      EXPECT_EQ(demanded + near.count("cache_hits"), near.count("nodes_drawn"));
+    else
+      EXPECT_LE(demanded + near.count("cache_hits"), near.count("nodes_drawn"));
+    // The same frame again: everything resident, nothing loaded.
+    r.cache()->drain();
+    r.cache()->takeCounters();
+    EXPECT_EQ(renderFrame(r, cameras[2]).count("nodes_loaded"), 0.0) << levels;
+  }
+  EXPECT_GT(hits[1], hits[0]);
+  EXPECT_GE(hits[2], hits[1]);
+}
+
+TEST(OutOfCore, ACacheSmallerThanTheLargestNodeIsRefused) {
+  try {
+    makeRenderer(options(double(largestNode() - 1)));
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--cache-mb"), std::string::npos) << e.what();
+  }
+}
+
+// A byte of the IDs of a node the frame draws, in a block after the node table's: the store
+// opens, the frame fails naming the store.
+TEST(OutOfCore, ABlockCorruptedAfterOpeningFailsTheFrame) {
+  const fs::path bad = store().parent_path() / "corrupt.lzbtree";
+  fs::copy_file(store(), bad, fs::copy_options::overwrite_existing);
+  const SampleTree whole = readTree(bad.string());
+  const Camera camera = walk()[2];
+  const format::Sections s = format::sections(whole.nodes.size(), whole.triangles());
+  const uint64_t tableBlock = (whole.nodes.size() * sizeof(TreeNode) - 1) / kStoreBlock;
+  uint64_t at = 0;
+  for (const Visit& v : traverse(whole, camera, 1).visits) {
+    const uint64_t offset = s.ids + whole.nodes[v.node].firstTriangle * 8;
+    if (!v.splat && offset / kStoreBlock > tableBlock) at = offset;
+  }
+  ASSERT_GT(at, 0u);
+  {
+    std::fstream f(bad, std::ios::binary | std::ios::in | std::ios::out);
+    f.seekg(std::streamoff(kStoreHeaderBytes + at));
+    const char c = char(f.get() ^ 0x40);
+    f.seekp(std::streamoff(kStoreHeaderBytes + at));
+    f.put(c);
+  }
+  SampleTreeOptions st = options(64 << 20);
+  st.treePath = bad.string();
+  SampleTreeRenderer r = makeRenderer(st);  // header, table and node table are sound
+  try {
+    renderFrame(r, camera);
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(bad.string()), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("corrupted"), std::string::npos) << e.what();
+  }
+  // The loader stopped: the next frame fails alike.
+  EXPECT_THROW(renderFrame(r, camera), InputError);
+}
+
+}  // namespace
+}  // namespace lzb::sampletree

@@ -1,0 +1,47 @@
+#include "src/sampletree/paged_draw.hpp"
+
+#include <stdexcept>
+
+namespace lzb::sampletree {
+
+namespace {
+
+// The longest run of nodes from `begin` whose payloads fit `budget` together.
+size_t batchEnd(const SampleTree& table, std::span<const uint32_t> nodes, size_t begin,
+                uint64_t budget) {
+  uint64_t bytes = 0;
+  size_t end = begin;
+  while (end < nodes.size() && bytes + payloadBytes(table.nodes[nodes[end]]) <= budget)
+    bytes += payloadBytes(table.nodes[nodes[end++]]);
+  if (end == begin) throw std::logic_error("drawPaged: a node larger than the cache budget");
+  return end;
+}
+
+void stage(const std::vector<const NodePayload*>& payloads, SoupStaging& s) {
+  s.positions.clear();
+  s.ids.clear();
+  for (const NodePayload* p : payloads) {
+    s.positions.insert(s.positions.end(), p->positions.begin(), p->positions.end());
+    s.ids.insert(s.ids.end(), p->ids.begin(), p->ids.end());
+  }
+}
+
+}  // namespace
+
+uint64_t drawPaged(NodeCache& cache, const SampleTree& table, std::span<const uint32_t> nodes,
+                   const Camera& camera, int threads, NativeRasterizer& raster,
+                   SoupStaging& staging, Framebuffer& fb) {
+  uint64_t batches = 0;
+  for (size_t begin = 0; begin < nodes.size(); ++batches) {
+    const size_t end = batchEnd(table, nodes, begin, cache.budget());
+    const std::span<const uint32_t> batch = nodes.subspan(begin, end - begin);
+    stage(cache.acquire(batch), staging);
+    const SoupRange all{0, staging.ids.size()};
+    raster.drawSoup(camera, TriangleSoup{staging.positions, staging.ids, {&all, 1}}, threads, fb);
+    cache.release(batch);
+    begin = end;
+  }
+  return batches;
+}
+
+}  // namespace lzb::sampletree

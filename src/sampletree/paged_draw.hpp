@@ -1,0 +1,30 @@
+#pragma once
+// Drawing a frame's triangles from the node cache (out of core): in batches whose payloads fit
+// the cache's budget (one batch when the frame's nodes fit), each acquired (loading what is
+// missing, waiting for it), copied into one triangle soup, drawn by the native z-buffer and
+// released. The z-buffer keeps the nearer (depth, ID) at each pixel whatever the order, so any
+// batching gives the image of one draw of them all, i.e. the in-core renderer's.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "src/core/camera.hpp"
+#include "src/core/framebuffer.hpp"
+#include "src/sampletree/node_cache.hpp"
+#include "src/zbuffer/native_raster.hpp"
+
+namespace lzb::sampletree {
+
+// The soup a batch is copied into, kept between frames.
+struct SoupStaging {
+  std::vector<glm::vec3> positions;
+  std::vector<uint64_t> ids;
+};
+
+// nodes: in preorder, each with triangles and its payload within the cache's budget.
+// Returns the number of batches drawn.
+uint64_t drawPaged(NodeCache& cache, const SampleTree& table, std::span<const uint32_t> nodes,
+                   const Camera& camera, int threads, NativeRasterizer& raster,
+                   SoupStaging& staging, Framebuffer& fb);
+
+}  // namespace lzb::sampletree

@@ -1,0 +1,70 @@
+#pragma once
+// The paged reader of a tree store (section 6): opens the store, checks its header and block table
+// and reads the node table, which stays resident; a node's triangles are read when asked for,
+// checking the CRC of every 64 KiB block they touch. Any fault is an InputError naming the store.
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "src/sampletree/sample_tree.hpp"
+#include "src/sampletree/store_format.hpp"
+
+namespace lzb::sampletree {
+
+// What rendering needs of a node's triangles (colour is shaded from the IDs).
+struct NodePayload {
+  std::vector<glm::vec3> positions;  // 3 per triangle
+  std::vector<uint64_t> ids;
+};
+
+// Bytes of a node's payload as loaded: positions and IDs.
+inline uint64_t payloadBytes(const TreeNode& n) {
+  return uint64_t(n.triangleCount) * (format::kPositionBytes + format::kIdBytes);
+}
+
+class StoreReader {
+ public:
+  explicit StoreReader(const std::string& path);
+  ~StoreReader();
+  StoreReader(const StoreReader&) = delete;
+  StoreReader& operator=(const StoreReader&) = delete;
+
+  // The tree without triangles: parameters, root cube and every node.
+  const SampleTree& table() const { return table_; }
+  uint64_t triangles() const { return header_.triangles; }
+  uint64_t fileBytes() const { return fileBytes_; }
+  const std::string& where() const { return where_; }
+
+  // Node `index`'s positions and IDs. Not thread-safe: one loader calls it.
+  NodePayload read(uint32_t index);
+  // Bytes read from the file so far (whole blocks, each once per miss of the block memo).
+  uint64_t fileBytesRead() const { return fileBytesRead_.load(); }
+
+ private:
+  void readPayload(uint64_t offset, uint64_t n, void* out);
+  const std::vector<char>& block(uint64_t index);
+  void readFile(uint64_t offset, size_t n, void* out, const std::string& what);
+
+  std::string where_;
+  int fd_ = -1;
+  uint64_t fileBytes_ = 0;
+  format::Header header_{};
+  format::Sections sections_;
+  std::vector<uint32_t> crcs_;
+  SampleTree table_;
+  // The last few verified blocks: neighbouring nodes share blocks (preorder, Morton order).
+  static constexpr size_t kMemoBlocks = 4;
+  struct Memo {
+    uint64_t index = UINT64_MAX;
+    uint64_t used = 0;
+    std::vector<char> bytes;
+  };
+  Memo memo_[kMemoBlocks];
+  uint64_t memoClock_ = 0;
+  std::atomic<uint64_t> fileBytesRead_{0};
+};
+
+}  // namespace lzb::sampletree
