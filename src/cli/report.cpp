@@ -5,6 +5,7 @@
 
 #include "src/cli/methods.hpp"
 #include "src/core/atomic_file.hpp"
+#include "src/core/statistics.hpp"
 #include "src/core/system.hpp"
 
 namespace lzb {
@@ -12,13 +13,6 @@ namespace lzb {
 namespace {
 
 nlohmann::json vec(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t m = v.size() / 2;
-  return v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-}
 
 }  // namespace
 

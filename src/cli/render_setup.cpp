@@ -1,0 +1,124 @@
+#include "src/cli/render_setup.hpp"
+
+#include <cstdint>
+#include <filesystem>
+
+#include <unistd.h>
+
+#include "mpi/composite.hpp"
+#include "src/cli/methods.hpp"
+#include "src/core/error.hpp"
+#include "src/core/system.hpp"
+#include "src/core/timer.hpp"
+#include "src/image/reference.hpp"
+#include "src/scene/load.hpp"
+
+namespace lzb {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Bytes a pixel: a frame (depth 4 + colour 4 + ID 8), a 4 x 4 sub-sample render (16 x 16), and
+// a reduced ReferenceFrame (centre ID 8 + 16 IDs x 8 + box colour 12).
+constexpr uint64_t kFrame = 16, kFine = 16 * 16, kReduced = 8 + 16 * 8 + 12;
+
+// Refuses sub-sample images over the camera's size limit (4W x 4H), naming the option that asks
+// for them. A size of 0 (not given: the scene file's or the default) passes here.
+void checkSubsampleSizes(const RenderArgs& a, int width, int height) {
+  if (!a.reference.empty()) checkSubsampleSize(width, height, "--reference");
+  if (a.subsamples) checkSubsampleSize(width, height, "--subsamples");
+}
+
+// Bytes every rank holds for one width x height frame, at least (the renderer's own buffers come
+// on top): the frame; with --subsamples its sub-sample render while it is reduced to the frame's
+// ReferenceFrame, which is kept; with --reference the reference's centre render, sub-sample
+// render and reduction, all at once.
+uint64_t frameBytes(const RenderArgs& a, int width, int height) {
+  uint64_t perPixel = kFrame;
+  if (a.subsamples) perPixel += kReduced;
+  if (!a.reference.empty()) perPixel += kFrame + kFine + kReduced;
+  else if (a.subsamples) perPixel += kFine;
+  return perPixel * uint64_t(width) * uint64_t(height);
+}
+
+// Refuses, before any allocation, a frame this process cannot hold.
+void checkFrameMemory(const RenderArgs& a, int width, int height) {
+  const std::string size = std::to_string(width) + "x" + std::to_string(height);
+  requireMemory(frameBytes(a, width, height), a.width || a.height ? "--width/--height" : "image size",
+                "a " + size + " frame" + (a.reference.empty() ? "" : " with its --reference") +
+                    (a.subsamples ? " and --subsamples" : ""));
+}
+
+}  // namespace
+
+uint64_t referenceFrameBytes(int width, int height) {
+  return kReduced * uint64_t(width) * uint64_t(height);
+}
+
+void validateRenderArgs(const RenderArgs& a) {
+  methodNamed(a.method, "--method").validate();
+  if (!a.reference.empty()) exactMethodNamed(a.reference, "--reference");
+  if (a.subsamples) exactMethodNamed(a.method, "--subsamples");
+  checkSubsampleSizes(a, a.width, a.height);
+  if (a.width && a.height) checkFrameMemory(a, a.width, a.height);
+  require(a.threads >= 0 && a.threads <= 1024, "--threads", "must be in [0, 1024]");
+  require(a.frames >= 1 && a.frames <= 1000000, "--frames", "must be in [1, 1000000]");
+  mpi::parseCompositeStrategy(a.composite, "--composite");
+  require(a.fov >= 0.0 && a.fov < 180.0, "--fov", "must be in (0, 180) degrees");
+  require(a.nearPlane >= 0.0, "--near", "must be > 0");
+  require(a.farPlane >= 0.0, "--far", "must be > 0");
+}
+
+void checkOutput(const std::string& out) {
+  fs::path existing = fs::absolute(out);
+  std::error_code ec;
+  while (!fs::exists(existing, ec) && existing.has_parent_path() && existing != existing.parent_path())
+    existing = existing.parent_path();
+  require(fs::is_directory(existing, ec), "--out " + out,
+          existing.string() + " is not a folder");
+  // A probe folder made and removed in the nearest existing ancestor.
+  const fs::path probe = existing / (".lzb-write-probe." + std::to_string(::getpid()));
+  const bool created = fs::create_directory(probe, ec);
+  fs::remove(probe, ec);
+  require(created, "--out " + out, "cannot create a folder in " + existing.string());
+}
+
+void createOutput(const std::string& out) {
+  std::error_code ec;
+  fs::create_directories(out, ec);
+  require(!ec, "--out " + out, "cannot create the folder: " + ec.message());
+}
+
+Camera RenderPlan::camera(int f) const {
+  const CameraSpec spec = withClipPlanes(pathCamera(scene, base, f, frames), scene.bounds());
+  return Camera(spec, width, height, "camera (frame " + std::to_string(f) + ")");
+}
+
+void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan) {
+  Stopwatch loadClock;
+  plan.scene = loadScene(a.scene, !talk);
+  require(plan.scene.expandedTriangles() > 0, a.scene, "the scene has no triangles");
+  plan.loadSeconds = loadClock.seconds();
+
+  plan.options.method = a.method;
+  plan.options.threads = a.threads > 0 ? a.threads : coresOwned();
+  plan.options.seed = a.seed;
+  plan.options.quiet = !talk;
+  useThreads(plan.options.threads);
+
+  plan.width = a.width ? a.width : plan.scene.width.value_or(640);
+  plan.height = a.height ? a.height : plan.scene.height.value_or(480);
+  plan.frames = a.frames;
+  CameraSpec& base = plan.base;
+  base = plan.scene.camera ? *plan.scene.camera : frameBounds(plan.scene.bounds());
+  if (a.fov > 0.0) base.fovyDegrees = a.fov;
+  if (a.nearPlane > 0.0) base.nearPlane = a.nearPlane;
+  if (a.farPlane > 0.0) base.farPlane = a.farPlane;
+  // Validate the first camera and the sub-sample size before any rendering work starts.
+  Camera(withClipPlanes(base, plan.scene.bounds()), plan.width, plan.height, "camera");
+  checkSubsampleSizes(a, plan.width, plan.height);
+  checkFrameMemory(a, plan.width, plan.height);
+}
+
+}  // namespace lzb

@@ -1,0 +1,44 @@
+#pragma once
+// The steps `lzb render` and `lzb sweep` share before the first frame: checking the render
+// options, the output folder, and loading the scene with the image size and camera path.
+#include <cstdint>
+#include <string>
+
+#include "src/cli/render_command.hpp"
+#include "src/core/camera.hpp"
+#include "src/core/renderer.hpp"
+#include "src/core/scene.hpp"
+
+namespace lzb {
+
+// Checks what needs no scene (the method's own options included, through its validate());
+// throws InputError naming the option.
+void validateRenderArgs(const RenderArgs& a);
+
+// Bytes one frame's reduced reference (a ReferenceFrame) holds.
+uint64_t referenceFrameBytes(int width, int height);
+
+// --out must name an existing writable folder or one that can be created; checked before any
+// work and without creating anything, so bad input leaves nothing behind.
+void checkOutput(const std::string& out);
+// Creates --out (and its parents); throws InputError naming it.
+void createOutput(const std::string& out);
+
+// The loaded scene and what every frame of a run shares.
+struct RenderPlan {
+  Scene scene;
+  RenderOptions options;
+  int width = 0, height = 0;
+  int frames = 1;
+  CameraSpec base;
+  double loadSeconds = 0.0;
+  // The camera of frame f along the path of `frames` (scene keyframes, else a circle).
+  Camera camera(int f) const;
+};
+
+// Loads a.scene into `plan` (in place: renderers keep a reference to the scene) and resolves the
+// threads (useThreads), image size, clip planes and fov; checks the first camera, the sub-sample
+// size and the frame memory. Throws InputError.
+void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan);
+
+}  // namespace lzb
