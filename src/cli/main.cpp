@@ -13,6 +13,7 @@
 #include "src/cli/limits_command.hpp"
 #include "src/cli/omp_wait_policy.hpp"
 #include "src/cli/render_command.hpp"
+#include "src/cli/sweep_command.hpp"
 #include "src/core/error.hpp"
 
 namespace {
@@ -36,6 +37,10 @@ int main(int argc, char** argv) {
   lzb::RenderArgs render;
   addRenderOptions(*app.add_subcommand("render", "render frames and write images + report.json"),
                    render);
+  lzb::SweepArgs sweep;
+  addSweepOptions(*app.add_subcommand("sweep", "render every combination of --param values against "
+                                               "the exact reference: sweep.csv + sweep.png"),
+                  sweep);
   lzb::InfoArgs info;
   addInfoOptions(*app.add_subcommand("info", "triangle counts, bounds, octree statistics, memory"),
                  info);
@@ -70,6 +75,7 @@ int main(int argc, char** argv) {
     });
     if (helpShown) return 0;
     if (app.got_subcommand("render")) return runRender(render, g, commandLine);
+    if (app.got_subcommand("sweep")) return runSweep(sweep, g, commandLine);
     // info, limits, export, build-tree and compare: work of each rank alone, written by the root.
     int status = 0;
     lzb::mpi::agree(g, [&] {
