@@ -26,6 +26,7 @@
 #include "raycast/lzb_test_util.hpp"
 #include "raycast/raycast_renderer.hpp"
 #include "src/core/shading.hpp"
+#include "src/core/statistics.hpp"
 #include "src/core/timer.hpp"
 
 namespace lzb {
@@ -43,13 +44,6 @@ std::string envString(const char* name, const std::string& fallback) {
 
 int envInt(const char* name, int fallback) {
   return std::atoi(envString(name, std::to_string(fallback)).c_str());
-}
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 // Per frame, per figure: the values of every round.
