@@ -71,8 +71,8 @@ Generated generateTerrain(Scene& scene, BuiltinParams& params) {
   const double e = spec.size;
   const glm::dvec3 foot = spec.position(0.5, 0.95);
   CameraSpec camera;
-  camera.position = foot + glm::dvec3(0.0, 0.02 * e + 0.25 * height, 0.0);
-  camera.lookAt = glm::dvec3(0.0, 0.3 * height, -0.5 * e);
+  camera.position = foot + glm::dvec3(0.0, 0.01 * e, 0.0);
+  camera.lookAt = glm::dvec3(0.0, foot.y, -0.5 * e);
   camera.fovyDegrees = 50.0;
   camera.nearPlane = 1e-3 * e;
   out.camera = camera;
