@@ -62,7 +62,7 @@ Generated generateTerrain(Scene& scene, BuiltinParams& params) {
   spec.size = params.number("extent", 2000.0, 1e-3, 1e9);
   const double height = params.number("height", 0.06 * spec.size, 0.0, 1e9);
   spec.octaves = 6;
-  readNoise(params, spec, height, 5.0 / spec.size, 512);
+  readNoise(params, spec, height, 5.0 / spec.size, 768);
   params.finish();
   Generated out;
   out.root = addProcedural(scene, "terrain", spec, "builtin:" + params.spec());

@@ -121,8 +121,8 @@ spec = "terrain?tess=99999"
 
 // Stated bounds: at the default views and 640 x 480 the tessellation of builtin:displaced (plane
 // and sphere) stays within 0.5 pixel of the exact surface (measured 0.02 and 0.09 px); the
-// terrain's 512 x 512 grid (cells of 3.9 m on 2 km) within 1 pixel (measured 0.5 px, right in
-// front of the camera) and 5e-4 of its extent (measured 1.4e-4).
+// terrain's 768 x 768 grid (cells of 2.6 m on 2 km) within 1 pixel (measured 0.5 px, right in
+// front of the camera; 1.4 px with 512) and 5e-4 of its extent (measured 6e-5).
 TEST(ProceduralBuiltins, DefaultTessellationIsFineEnough) {
   const Deviation plane = deviation("builtin:displaced");
   EXPECT_LT(plane.pixels, 0.5);
