@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "src/core/area_sampling.hpp"
+#include <cmath>
 
 namespace lzb::sqrt5 {
 
@@ -36,10 +36,11 @@ void HaltonSurface::reserve(uint64_t n) {
     const size_t t = size_t(std::upper_bound(cdf_.begin(), cdf_.end(), x) - cdf_.begin());
     const size_t tri = std::min(t, cdf_.size() - 1);
     const double lo = tri == 0 ? 0.0 : cdf_[tri - 1], share = cdf_[tri] - lo;
-    float a = float(std::clamp(share > 0.0 ? (x - lo) / share : 0.0, 0.0, 1.0));
-    float c = float(radicalInverse(k + 1, 3));
-    foldUnitSquare(a, c);
-    samples_.push_back({uint32_t(tri), a, c});
+    // The square mapped onto the triangle continuously (a = 1 - sqrt(r), c = s sqrt(r)): uniform
+    // by area and keeping the low-discrepancy spread, which folding the square would overlay.
+    const double r = std::clamp(share > 0.0 ? (x - lo) / share : 0.0, 0.0, 1.0);
+    const double q = std::sqrt(r), s = radicalInverse(k + 1, 3);
+    samples_.push_back({uint32_t(tri), float(1.0 - q), float(s * q)});
   }
 }
 

@@ -6,8 +6,10 @@
 //
 // Sample k: x = halton2(k + 1) picks the triangle along the prefix sums of the triangle areas (the
 // triangle whose share of the total area holds x), the position of x inside that share is the
-// first uniform coordinate, y = halton3(k + 1) the second; the unit square is folded onto the
-// triangle (area_sampling.hpp), so the samples are uniform by area.
+// first uniform coordinate r, y = halton3(k + 1) the second s; the point is
+// v0 + (1 - sqrt r)(v1 - v0) + s sqrt(r) (v2 - v0), uniform by area and continuous in (r, s), so
+// the prefix's even spread carries over (folding the square onto the triangle would overlay two
+// halves of it).
 #include <cstdint>
 #include <vector>
 
