@@ -2,12 +2,14 @@
 """The sqrt(5) sampling study (Stamminger & Drettakis, Interactive sampling and rendering for
 complex and procedural geometry), in four parts, each a list of rows of one CSV:
 
-- terrain: builtin:terrain along the ground to the horizon, --horizon on against off: initial
+- terrain: builtin:terrain from its own camera (one frame) along the ground to the horizon,
+  --horizon on against off: initial
   samples, samples culled by the horizon (and by its first, largest-height test), samples
   generated and drawn, frame time; the images are the same (tested in sqrt5_test).
-- generation: the displaced plane at the A'min that makes about 3.3 M samples per frame (the
-  paper's figure), samples generated per second of the sampling stage (--sqrt5-cache-mb 0: every
-  sample evaluated each frame), and with the forest cache (frames after the first).
+- generation: the displaced plane (runs/sqrt5/displaced_walk.toml: a camera moving a little per
+  frame) at the A'min that makes about 3.3 M samples per frame (the paper's figure), samples
+  generated per second of the sampling stage (--sqrt5-cache-mb 0: every sample evaluated each
+  frame), and with the forest cache (frames after the first).
 - amin: the displaced plane and sphere, frame time and accuracy against raycast for --amin from
   1/4 to 8 pixels.
 - forest: builtin:halton-forest (mesh objects by Halton prefixes) against raycast and rzb.
@@ -74,9 +76,11 @@ def jobs():
     forest = "builtin:halton-forest?trees=16" if QUICK else "builtin:halton-forest"
     for h in ("on", "off"):
         yield "terrain", terrain, f"horizon_{h}", "0.5", ["--method", "sqrt5", "--horizon", h]
-    yield "generation", plane, "no_cache", GEN_AMIN, ["--method", "sqrt5", "--amin", GEN_AMIN,
-                                                      "--sqrt5-cache-mb", "0"]
-    yield "generation", plane, "cache", GEN_AMIN, ["--method", "sqrt5", "--amin", GEN_AMIN]
+    walk = os.path.join(HERE, "displaced_walk.toml")  # a camera moving a little per frame
+    yield "generation", walk, "no_cache", GEN_AMIN, ["--method", "sqrt5", "--amin", GEN_AMIN,
+                                                     "--sqrt5-cache-mb", "0"]
+    yield "generation", walk, "cache", GEN_AMIN, ["--method", "sqrt5", "--amin", GEN_AMIN,
+                                                  "--sqrt5-cache-mb", "4096"]
     for scene in (plane, sphere):
         for a in AMINS:
             yield "amin", scene, "sqrt5", a, ["--method", "sqrt5", "--amin", a, "--reference", "raycast"]
@@ -87,14 +91,16 @@ def jobs():
 def run():
     rows, commands = [], []
     for part, scene, config, amin, args in jobs():
-        shown, rep = common.render(scene, [*args, "--frames", str(FRAMES), "--width", str(W),
+        # the terrain from its own camera along the ground (a path would circle above it)
+        frames = 1 if part == "terrain" else FRAMES
+        shown, rep = common.render(scene, [*args, "--frames", str(frames), "--width", str(W),
                                            "--height", str(H)],
                                    threads=common.CORES,
                                    quiet_wait=not QUICK and "--no-wait" not in sys.argv)
         commands.append(shown)
         row = row_of(part, scene, config, amin, rep)
         rows.append(row)
-        print(f"{part:10s} {scene:40s} {config:10s} amin {amin:5s}: "
+        print(f"{part:10s} {os.path.basename(scene):40s} {config:10s} amin {amin:5s}: "
               f"{row['median_frame_s'] * 1e3:8.1f} ms, generated {row['samples_generated']:.0f}, "
               f"drawn {row['samples_drawn'] + row['halton_samples_drawn']:.0f}, culled "
               f"{row['samples_culled_horizon']:.0f}, correct {row.get('median_correct_rate_covered', '')}",

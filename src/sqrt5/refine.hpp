@@ -68,7 +68,16 @@ struct ProceduralView {
   // Whether the sample at uv (point c) of `level` must be refined.
   bool undersampled(const glm::dvec2& uv, const glm::dvec3& c, const Sqrt5Lattice& lattice,
                     int level) const {
+    if (sector && !mayReachSurface(uv, lattice, level)) return false;
     return undersampledBy(c, point(uv + lattice.u(level)) - c, point(uv + lattice.v(level)) - c);
+  }
+  // Whether a sector sample's descendants (within 1.5 spawning vectors) can reach the terrain's
+  // extent: samples beyond it are not drawn, and refining them far from it only costs.
+  bool mayReachSurface(const glm::dvec2& uv, const Sqrt5Lattice& lattice, int level) const {
+    const glm::dvec2 s = surfaceUv(uv);
+    const double r = 1.5 * std::max(glm::length(surfaceUv(uv + lattice.u(level)) - s),
+                                    glm::length(surfaceUv(uv + lattice.v(level)) - s));
+    return s.x >= -r && s.x <= 1.0 + r && s.y >= -r && s.y <= 1.0 + r;
   }
   // The same from the images a, b of the spawning vectors (camera space).
   bool undersampledBy(const glm::dvec3& c, const glm::dvec3& a, const glm::dvec3& b) const;
