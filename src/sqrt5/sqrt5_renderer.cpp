@@ -29,6 +29,7 @@ Sqrt5Renderer::Sqrt5Renderer(const Scene& scene, const RenderOptions& options,
   options_.threads = std::max(options_.threads, 1);
   meshBounds_.resize(scene.nodes.size());
   halton_.resize(scene.nodes.size());
+  allTriangles_.resize(scene.nodes.size());
   for (size_t n = 0; n < scene.nodes.size(); ++n) {
     Bounds& b = meshBounds_[n];
     for (const glm::vec3& v : scene.nodes[n].mesh.positions) b.extend(glm::dvec3(v));
@@ -66,6 +67,7 @@ void Sqrt5Renderer::plan(Frame& f) {
   f.side.assign(f.placements.size(), 0);
   f.sectors.assign(f.placements.size(), std::nullopt);
   f.halton.assign(f.placements.size(), 0);
+  f.polygons.assign(f.placements.size(), 0);
   for (size_t i = 0; i < f.placements.size(); ++i) {
     const Placement& p = f.placements[i];
     const Node& node = scene_.nodes[p.node];
@@ -84,11 +86,18 @@ void Sqrt5Renderer::plan(Frame& f) {
                               params_.amin);
       continue;
     }
+    // n_s = A / (d~^2 A'min), d~ the nearest distance of the placement's box (the surface's
+    // area from the triangle prefix sums, built once per unique mesh; samples only on demand)
     if (!halton_[p.node]) halton_[p.node] = std::make_unique<HaltonSurface>(node.mesh);
-    // n_s = A / (d~^2 A'min), d~ the nearest distance of the placement's box
     const double d = std::max(nearestDistance(p.bounds, cam.position()), cam.nearPlane());
     const double ns = halton_[p.node]->area() * areaScale(p.world) * scale * scale /
                       (params_.amin * d * d);
+    // points buy nothing once the prefix costs as much as the triangle list: draw the triangles
+    const uint64_t m = node.mesh.size();
+    if (ns >= kPolygonFactor * double(m)) {
+      f.polygons[i] = m;
+      continue;
+    }
     f.halton[i] = ns < double(kMaxHaltonSamples) ? uint64_t(std::ceil(ns)) : kMaxHaltonSamples;
   }
   // Each unique mesh's vector extended once to its longest prefix (serially, before the draw),
@@ -116,6 +125,11 @@ void Sqrt5Renderer::deal(Frame& f) const {
         f.jobs.push_back({i, r, std::min(rows, r + step)});
         costs.push_back(double((f.jobs.back().end - r) * rows));
       }
+      continue;
+    }
+    if (f.polygons[i] > 0) {
+      f.jobs.push_back({i, 0, 0});
+      costs.push_back(double(f.polygons[i]) * kTriangleCost);
       continue;
     }
     for (uint64_t b = 0; b < f.halton[i]; b += kJobSamples) {
@@ -147,6 +161,7 @@ void Sqrt5Renderer::drawJob(const Frame& f, size_t k, Splatter& out, DrawCounts&
   auto& kids = scratch.kids;
   const Placement& p = f.placements[job.placed];
   const Node& node = scene_.nodes[p.node];
+  if (f.polygons[job.placed] > 0) return;  // drawn by drawPolygons
   const auto splat = [&](const glm::dvec3& c, uint64_t id, int) {
     out.add(float(c.x), float(c.y), float(c.z), id);
   };
@@ -219,6 +234,24 @@ void Sqrt5Renderer::DrawCounts::merge(const DrawCounts& o) {
   splatted += o.splatted;
 }
 
+std::pair<uint64_t, uint64_t> Sqrt5Renderer::drawPolygons(const Frame& f, Framebuffer& fb) {
+  DrawLists lists;
+  for (uint32_t k : f.mine) {
+    const Job& job = f.jobs[k];
+    if (f.polygons[job.placed] == 0) continue;
+    const Placement& p = f.placements[job.placed];
+    std::vector<uint32_t>& all = allTriangles_[p.node];
+    if (all.empty()) {
+      all.resize(scene_.nodes[p.node].mesh.size());
+      for (uint32_t t = 0; t < all.size(); ++t) all[t] = t;
+    }
+    lists.lists.push_back({p.node, p.world, p.idBase, all});
+    lists.triangles += all.size();
+  }
+  if (!lists.lists.empty()) raster_.draw(scene_, *f.camera, lists, {}, options_.threads, fb);
+  return {lists.lists.size(), lists.triangles};
+}
+
 Sqrt5Renderer::DrawCounts Sqrt5Renderer::draw(const Frame& f) {
   const Camera& cam = *f.camera;
   const bool wide = scene_.expandedTriangles() > 0xffffffffull;
@@ -238,6 +271,10 @@ void Sqrt5Renderer::render(const Camera& camera, int frame, const WorkShare& sha
   const DrawCounts c = draw(f);
   cache_.endFrame(params_.cacheMb << 20);
   stats.addStage("sample", clock.lap());
+  const auto [polygonPlacements, triangles] = drawPolygons(f, fb);
+  stats.addCount("polygon_placements_drawn", double(polygonPlacements));
+  stats.addCount("triangles_drawn", double(triangles));
+  stats.addStage("polygons", clock.lap());
   Framebuffer points(fb.width, fb.height);
   keys_.resolve(points, options_.threads);
   compositeNearer(fb, points);
@@ -262,16 +299,18 @@ void Sqrt5Renderer::report(const Frame& f, const DrawCounts& c, FrameStats& stat
   stats.addCount("cache_bytes", double(cache_.bytes()));
   stats.addCount("cache_lines", double(cache_.lineCount()));
   stats.addCount("samples_splatted", double(c.splatted));
-  uint64_t procedural = 0, halton = 0, sectors = 0;
+  uint64_t procedural = 0, halton = 0, sectors = 0, polygons = 0;
   int side = 0;
   for (size_t i = 0; i < f.placements.size(); ++i) {
     procedural += f.side[i] > 0;
     sectors += f.sectors[i].has_value();
     halton += f.halton[i];
+    polygons += f.polygons[i] > 0;
     side = std::max(side, f.side[i]);
   }
   stats.setShared("placements_visible", double(f.placements.size()));
   stats.setShared("placements_procedural", double(procedural));
+  stats.setShared("placements_polygons", double(polygons));
   stats.setShared("terrain_sectors", double(sectors));
   stats.setShared("halton_samples_planned", double(halton));
   stats.setShared("initial_side_max", double(side));

@@ -10,11 +10,17 @@
 //      distance of its bounds (halton.hpp; each unique mesh's vector extended to the longest
 //      prefix this frame), cut into runs of kJobSamples; the runs are dealt to ranks in
 //      contiguous runs of equal estimated cost (mpi/decomposition.hpp: roots, or samples);
+//      a mesh placement whose prefix would be at least kPolygonFactor (4) x its triangle count
+//      (points cost as much there) is drawn as polygons instead: one unit of kTriangleCost per
+//      triangle (the paper's trade, sections 4 and 7: polygons are more efficient when they
+//      cover many pixels; src/surfels switches per object alike);
 //   3. sample: this rank's runs, on OpenMP threads: sqrt(5) trees grown from the roots
 //      (refine.hpp) and Halton prefixes, every sample splatted through the splatting core with the
 //      ID of its triangle (the tessellated triangle holding its (u, v), or the mesh triangle it
 //      lies on) and a splat of d = max(1, ceil(sqrt(2 A'min))) pixels;
-//   4. resolve: the key buffer into the frame.
+//   4. polygons: this rank's polygon placements by the native z-buffer into the frame
+//      (src/zbuffer/native_raster.hpp);
+//   5. resolve: the key buffer into the frame, composited with the polygons by (depth, ID).
 // Nothing depends on the rank or thread count: the plan follows from the camera and the scene,
 // the deal only decides who draws which run, and the key buffer takes per-pixel minima.
 #include <memory>
@@ -30,6 +36,7 @@
 #include "src/sqrt5/placements.hpp"
 #include "src/sqrt5/refine.hpp"
 #include "src/sqrt5/sqrt5_params.hpp"
+#include "src/zbuffer/native_raster.hpp"
 
 namespace lzb::sqrt5 {
 
@@ -38,6 +45,14 @@ constexpr uint64_t kJobSamples = 16384;
 constexpr uint64_t kJobRoots = 1024;
 // Halton samples of one placement at most (a mesh nearer than its size asks for unbounded ones).
 constexpr uint64_t kMaxHaltonSamples = uint64_t(1) << 22;
+// The dealing cost of one polygon against one Halton sample (as src/surfels: set-up and a few
+// fragments).
+constexpr double kTriangleCost = 4.0;
+// A mesh placement is drawn as polygons when its Halton prefix n_s >= kPolygonFactor * m (m its
+// triangle count): by the cost above points are cheaper below, and a prefix covers a pixel only
+// with some probability where exact triangles cover it surely (coplanar and edge-on surfaces;
+// measured against k = 1: README).
+constexpr double kPolygonFactor = kTriangleCost;
 
 class Sqrt5Renderer : public Renderer {
  public:
@@ -50,7 +65,8 @@ class Sqrt5Renderer : public Renderer {
   FrameStats setupStats() const override;
 
   // A run of work: lines [begin, end) of a procedural placement's initial grid (rows; a sector's
-  // constant-s columns), or Halton samples [begin, end) of a mesh placement.
+  // constant-s columns), Halton samples [begin, end) of a mesh placement, or (begin = end = 0)
+  // all triangles of a polygon placement.
   struct Job {
     uint32_t placed;
     uint64_t begin, end;
@@ -62,6 +78,7 @@ class Sqrt5Renderer : public Renderer {
     std::vector<int> side;           // per placement: initial grid side n (procedural), else 0
     std::vector<std::optional<Sector>> sectors;  // per placement: a terrain's sector
     std::vector<uint64_t> halton;    // per placement: Halton prefix length (mesh), else 0
+    std::vector<uint64_t> polygons;  // per placement: triangles drawn exactly (mesh), else 0
     std::vector<Job> jobs;
     std::vector<uint32_t> mine;
     std::vector<std::vector<CachedLine*>> cached;  // per mine: its lines' cache entries, if cached
@@ -78,6 +95,8 @@ class Sqrt5Renderer : public Renderer {
     void merge(const DrawCounts& o);
   };
   DrawCounts draw(const Frame& f);
+  // Stage 4: this rank's polygon placements into fb (depth and ID); returns placements, triangles.
+  std::pair<uint64_t, uint64_t> drawPolygons(const Frame& f, Framebuffer& fb);
   const Sqrt5Params& params() const { return params_; }
 
  private:
@@ -99,7 +118,9 @@ class Sqrt5Renderer : public Renderer {
   Sqrt5Params params_;
   std::vector<Bounds> meshBounds_;                      // per node: its own surface
   std::vector<std::unique_ptr<HaltonSurface>> halton_;  // per mesh node, built on first use
+  std::vector<std::vector<uint32_t>> allTriangles_;     // per mesh node drawn as polygons: 0..m-1
   ForestCache cache_;
+  NativeRasterizer raster_;
   KeyBuffer keys_;
 };
 
