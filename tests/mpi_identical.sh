@@ -12,6 +12,8 @@ shift 6 || shift $#
 rm -rf "$work" && mkdir -p "$work"
 scenes=("builtin:city?blocks=3" "builtin:sphereflake?depth=2" "builtin:forest?levels=1")
 [ -n "$data" ] && [ -s "$data/bunny00.off" ] && scenes+=("$data/bunny00.off")
+# LZB_IDENTICAL_SCENES (space-separated) replaces the list: a method's own scenes (sqrt5's procedural ones)
+[ -n "${LZB_IDENTICAL_SCENES:-}" ] && read -r -a scenes <<< "$LZB_IDENTICAL_SCENES"
 reference=raycast extra=("$@")
 case "$method" in
   zbuffer) extra+=(--subsamples) ;;

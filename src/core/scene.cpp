@@ -33,7 +33,9 @@ void Mesh::append(const Mesh& other) {
 }
 
 uint32_t Scene::addNode(std::string name) {
-  nodes.push_back(Node{std::move(name), {}, {}});
+  Node node;
+  node.name = std::move(name);
+  nodes.push_back(std::move(node));
   return uint32_t(nodes.size() - 1);
 }
 

@@ -20,6 +20,7 @@
 
 #include "src/core/bounds.hpp"
 #include "src/core/color.hpp"
+#include "src/core/procedural.hpp"
 
 namespace lzb {
 
@@ -55,6 +56,9 @@ struct Node {
   std::string name;
   Mesh mesh;
   std::vector<Instance> instances;
+  // A procedural object (src/core/procedural.hpp): `mesh` is then its tessellation, in the
+  // layout that maps a parameter point (u, v) to its triangle.
+  std::optional<ProceduralSurface> procedural;
 };
 
 // Triangles dropped at load time and why (reported, never silently lost).

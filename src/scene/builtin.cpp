@@ -17,7 +17,8 @@ void requireIdSpace(const BuiltinParams& params, const std::string& key, uint64_
 }
 
 std::vector<std::string> builtinNames() {
-  return {"chessboard", "city", "forest", "sphereflake", "replicated", "landscape"};
+  return {"chessboard", "city", "forest", "sphereflake", "replicated", "landscape", "displaced",
+          "terrain", "halton-forest"};
 }
 
 Generated addBuiltin(Scene& scene, const std::string& spec, const std::filesystem::path& baseDir) {
@@ -27,6 +28,9 @@ Generated addBuiltin(Scene& scene, const std::string& spec, const std::filesyste
   if (name == "city") return generateCity(scene, params);
   if (name == "forest") return generateForest(scene, params);
   if (name == "sphereflake") return generateSphereflake(scene, params);
+  if (name == "displaced") return generateDisplaced(scene, params);
+  if (name == "terrain") return generateTerrain(scene, params);
+  if (name == "halton-forest") return generateHaltonForest(scene, params);
   if (name == "replicated") return generateReplicated(scene, params, baseDir);
   if (name == "landscape") return generateLandscape(scene, params);
   std::string known;

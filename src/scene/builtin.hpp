@@ -5,6 +5,9 @@
 //   forest?trees=T&levels=L&seed=S    instanced trees on periodic terrain tiles, 4x4 nested L times
 //   sphereflake?depth=D               Haines' sphereflake through nested instancing
 //   replicated?mesh=PATH&k=K&levels=L a mesh file on a k x k grid, nested L times
+//   displaced?shape=plane|sphere&...  a procedural plane or sphere displaced by fractal noise
+//   terrain?extent=E&height=H&...     a procedural fractal heightfield, viewed along the ground
+//   halton-forest?trees=T&levels=L    the forest's meshed trees (one level by default)
 // Every generator is deterministic (fixed default seed, no thread or rank dependence).
 // src/scene/README.md documents the parameters and the triangle counts.
 #include <cstdint>

@@ -15,6 +15,9 @@ Generated generateCity(Scene& scene, BuiltinParams& params);
 Generated generateForest(Scene& scene, BuiltinParams& params);
 Generated generateSphereflake(Scene& scene, BuiltinParams& params);
 Generated generateLandscape(Scene& scene, BuiltinParams& params);
+Generated generateDisplaced(Scene& scene, BuiltinParams& params);
+Generated generateTerrain(Scene& scene, BuiltinParams& params);
+Generated generateHaltonForest(Scene& scene, BuiltinParams& params);
 Generated generateReplicated(Scene& scene, BuiltinParams& params,
                              const std::filesystem::path& baseDir);
 

@@ -1,6 +1,7 @@
 #include "src/scene/builtin_params.hpp"
 
 #include <charconv>
+#include <sstream>
 
 #include "src/core/error.hpp"
 
@@ -42,6 +43,17 @@ int64_t BuiltinParams::integer(const std::string& key, int64_t def, int64_t lo, 
           where(key), "must be an integer in " + range + ", got '" + v + "'");
   require(r.ec == std::errc() && x >= lo && x <= hi, where(key),
           "must be in " + range + ", got " + v);
+  return x;
+}
+
+double BuiltinParams::number(const std::string& key, double def, double lo, double hi) {
+  asked_.insert(key);
+  const auto it = values_.find(key);
+  if (it == values_.end()) return def;
+  std::ostringstream range;
+  range << "[" << lo << ", " << hi << "]";
+  const double x = parseNumber(it->second, where(key), "a number in " + range.str());
+  require(x >= lo && x <= hi, where(key), "must be in " + range.str() + ", got " + it->second);
   return x;
 }
 

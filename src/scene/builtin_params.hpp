@@ -17,6 +17,7 @@ class BuiltinParams {
   // Each getter returns the default when the key is absent and throws InputError naming the key
   // when the value does not parse or lies outside [lo, hi].
   int64_t integer(const std::string& key, int64_t def, int64_t lo, int64_t hi);
+  double number(const std::string& key, double def, double lo, double hi);
   uint64_t seed(const std::string& key, uint64_t def);
   std::string text(const std::string& key, const std::string& def);
   // Throws InputError naming the first key no getter asked for.
