@@ -45,7 +45,14 @@ PlaneDecision PartitionPlane::coarseRayCast(const EmbreeScene& embree, const Cam
 
 double PartitionPlane::costPlane(std::vector<double> hits, uint64_t rays, const Camera& camera,
                                  std::span<const LeafLoad> loads, double rayCost) {
-  if (hits.empty() || rays == 0) return camera.farPlane();
+  if (hits.empty() || rays == 0) {
+    // No coarse ray hit (sparse or sub-pixel geometry slips between them): every pixel may still
+    // need a ray, so weigh the whole near scene against a ray for every pixel.
+    double triangles = 0.0;
+    for (const LeafLoad& l : loads) triangles += l.triangles;
+    const double pixels = double(camera.width()) * double(camera.height());
+    return triangles <= rayCost * pixels ? camera.farPlane() : camera.nearPlane();
+  }
   std::sort(hits.begin(), hits.end());
   // Candidate k: z = hits[k - 1] (k = 0: the near plane). Near triangles per candidate from a
   // histogram of leaf starts over the candidates, then prefix sums.

@@ -12,7 +12,8 @@
 //             + kRayCost x (pixels whose coarse ray hit a surface beyond z),
 //   a near triangle costing 1 and an unfinished covered pixel kRayCost (its ray walk plus its
 //   share of the PVL drawn; kNaiveRayCost for naive's Embree rays). Candidates: the near plane
-//   and every coarse hit depth.
+//   and every coarse hit depth. With no coarse hit (sparse or sub-pixel geometry between the
+//   rays), all the culled triangles against a ray for every pixel: all near or all far.
 // - Frame coherence (dynamic only): a plane is reused by later frames while all of these hold
 //   (otherwise it is recomputed), so the plane is always one computed from a similar view:
 //     1. fewer than `planeReuse` frames have used it since it was computed;

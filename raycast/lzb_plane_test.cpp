@@ -128,8 +128,11 @@ TEST(PartitionPlane, CostPlaneWeighsNearTrianglesAgainstRays) {
   // Expensive from the start and rays cheap: the plane at the near plane, all rays.
   loads = {{0.5, 1000000}};
   EXPECT_EQ(PartitionPlane::costPlane(hits, 16, cam, loads, 1.0), 0.1);
-  // No hit: the whole frustum is near.
-  EXPECT_EQ(PartitionPlane::costPlane({}, 16, cam, loads, 12.0), 100.0);
+  // No hit (geometry between the coarse rays): the whole frustum is near when its triangles cost
+  // less than a ray per pixel (3072 x 12), else all of it is far.
+  const std::vector<LeafLoad> few = {{0.5, 30000}};
+  EXPECT_EQ(PartitionPlane::costPlane({}, 16, cam, few, 12.0), 100.0);
+  EXPECT_EQ(PartitionPlane::costPlane({}, 16, cam, loads, 12.0), 0.1);
 }
 
 TEST(PartitionPlane, CostModeIsDynamicAndReusable) {
