@@ -155,6 +155,54 @@ TEST_P(MethodConformance, ReportCarriesTheCommonFields) {
   EXPECT_TRUE(std::filesystem::exists(out / "frame_0001.exr"));
 }
 
+// The method_parameters of `lzb render` on a small frame with `options` (which hold
+// --quality `quality`, or none when it is empty).
+nlohmann::json methodParameters(const std::string& method, const std::string& options,
+                                const std::string& quality, const std::string& name) {
+  const auto out = freshDir("preset_" + method + "_" + name);
+  const RunResult r = runLzb("render 'builtin:city?blocks=2' --method " + method +
+                             " --width 48 --height 36 --quiet " + options + " --out " + out.string());
+  EXPECT_EQ(r.status, 0) << options << "\n" << r.output;
+  const nlohmann::json rep = readJson(out / "report.json");
+  EXPECT_EQ(rep["parameters"]["quality"],
+            quality.empty() ? nlohmann::json(nullptr) : nlohmann::json(quality));
+  return rep["method_parameters"];
+}
+
+// The preset's options as a command line.
+std::string asOptions(const std::vector<PresetOption>& preset) {
+  std::string s;
+  for (const PresetOption& o : preset) s += " '--" + o.name + "=" + o.value + "'";
+  return s;
+}
+
+// --quality q sets exactly the options the method's preset names (the render runs with them and
+// reports them as if typed), options typed on the command line win over the preset, and a
+// method with a trade to make has presets that differ.
+TEST_P(MethodConformance, QualityPresetsSetTheirOptionsAndTypedOptionsWin) {
+  std::unique_ptr<Method> method;
+  for (auto& m : makeRegisteredMethods())
+    if (m->name() == GetParam()) method = std::move(m);
+  ASSERT_TRUE(method);
+  const Quality levels[] = {Quality::kFast, Quality::kBalanced, Quality::kExact};
+  const char* names[] = {"fast", "balanced", "exact"};
+  std::vector<nlohmann::json> got;
+  for (int k = 0; k < 3; ++k) {
+    const std::vector<PresetOption> preset = method->preset(levels[k]);
+    got.push_back(methodParameters(GetParam(), std::string("--quality ") + names[k], names[k], names[k]));
+    EXPECT_EQ(got.back(), methodParameters(GetParam(), asOptions(preset), "",
+                                           std::string(names[k]) + "_typed"));
+  }
+  const std::vector<PresetOption> fast = method->preset(Quality::kFast);
+  const std::vector<PresetOption> exact = method->preset(Quality::kExact);
+  EXPECT_EQ(fast.empty(), method->exact() || GetParam() == "lzb");
+  if (fast.empty()) return;
+  EXPECT_NE(got[0], got[2]) << "fast and exact presets give the same options";
+  EXPECT_EQ(methodParameters(GetParam(), "--quality fast" + asOptions(exact), "fast",
+                             "fast_then_exact"),
+            got[2]);
+}
+
 INSTANTIATE_TEST_SUITE_P(Registered, MethodConformance, ::testing::ValuesIn(registeredNames()),
                          [](const auto& info) { return info.param; });
 

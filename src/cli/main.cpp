@@ -12,6 +12,7 @@
 #include "src/cli/info_command.hpp"
 #include "src/cli/limits_command.hpp"
 #include "src/cli/omp_wait_policy.hpp"
+#include "src/cli/quality.hpp"
 #include "src/cli/render_command.hpp"
 #include "src/cli/sweep_command.hpp"
 #include "src/core/error.hpp"
@@ -66,6 +67,8 @@ int main(int argc, char** argv) {
     lzb::mpi::agree(g, [&] {
       try {
         app.parse(argc, argv);
+        if (app.got_subcommand("render")) lzb::applyQuality(*app.get_subcommand("render"), render);
+        if (app.got_subcommand("sweep")) lzb::applyQuality(*app.get_subcommand("sweep"), sweep.render);
       } catch (const CLI::Success& e) {
         if (g.root()) app.exit(e);
         helpShown = true;

@@ -27,6 +27,10 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
                "mesh file (OBJ, PLY, OFF, STL, glTF, ...), scene.toml, or builtin:NAME?key=value")
       ->required();
   c.add_option("--method,-m", a.method, "rendering method: " + methodNames())->capture_default_str();
+  c.add_option("--quality", a.quality,
+               "fast | balanced | exact: the method's preset along its measured speed-accuracy "
+               "trade (runs/tradeoff); options given on the command line win; exact is the "
+               "method's most accurate setting (exact methods and lzb have no trade to make)");
   c.add_option("--reference", a.reference,
                "also render this exact method, at the pixel centres and at 4x4 sub-samples per "
                "pixel, and report accuracy against it: a pixel is correct when its triangle is "

@@ -13,6 +13,7 @@ namespace lzb {
 struct RenderArgs {
   std::string scene;
   std::string method = "hybrid";
+  std::string quality;    // empty: the options' own defaults; else fast | balanced | exact
   std::string reference;  // empty: none
   bool subsamples = false;  // store the 4x4 sub-sample IDs and box colour in each EXR
   std::string out = "out";

@@ -36,6 +36,7 @@ Report::Report(const RenderArgs& a, const RenderOptions& options, const mpi::Gro
            {"method", a.method},
            {"parameters",
             {{"seed", a.seed},
+             {"quality", a.quality.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.quality)},
              {"frames", a.frames},
              {"composite", a.composite},
              {"frame_groups", a.frameGroups},

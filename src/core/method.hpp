@@ -15,6 +15,16 @@
 
 namespace lzb {
 
+// --quality: a method's settings along its speed-accuracy trade, chosen from the measured Pareto
+// fronts in runs/tradeoff (its README says which runs). kExact is the method's most accurate
+// measured setting, not an exact image: only exact methods give those.
+enum class Quality { kFast, kBalanced, kExact };
+
+// One option a preset sets: its name without the dashes, and the value as typed.
+struct PresetOption {
+  std::string name, value;
+};
+
 class Method {
  public:
   virtual ~Method() = default;
@@ -26,11 +36,21 @@ class Method {
   virtual void addOptions(CLI::App& /*command*/) {}
   // Checks and converts the option values; throws InputError naming the option.
   virtual void validate() {}
+  // The options --quality q sets (those the command line gives win); none: the method has no
+  // trade to make (exact methods and lzb).
+  virtual std::vector<PresetOption> preset(Quality /*q*/) const { return {}; }
   // The method's option values, for the report.
   virtual nlohmann::json parameters() const { return nlohmann::json::object(); }
   // A renderer with the validated options; scene: finalized, outlives the renderer.
   virtual std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const = 0;
 };
+
+// The preset of level q among a method's three.
+inline std::vector<PresetOption> pickPreset(Quality q, std::vector<PresetOption> fast,
+                                            std::vector<PresetOption> balanced,
+                                            std::vector<PresetOption> exact) {
+  return q == Quality::kFast ? fast : q == Quality::kBalanced ? balanced : exact;
+}
 
 // Adds option `name` bound to `value` to `command`, or, when another method added it already,
 // makes `value` follow it: methods that compose others (the hybrid) read the same --splat or

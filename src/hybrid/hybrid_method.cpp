@@ -47,6 +47,12 @@ class HybridMethod : public Method {
     parsePlane(plane_, "--plane", params_.lzb);
     params_.validate();
   }
+  // runs/tradeoff/README.md "Presets".
+  std::vector<PresetOption> preset(Quality q) const override {
+    return pickPreset(q, {{"splat", "2"}, {"oversample", "0.5"}},
+                      {{"splat", "1"}, {"oversample", "1"}},
+                      {{"splat", "1"}, {"oversample", "2"}});
+  }
   nlohmann::json parameters() const override { return params_.toJson(); }
   std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const override {
     return std::make_unique<hybrid::HybridRenderer>(scene, options, params_);

@@ -97,6 +97,13 @@ class RzbMethod : public Method {
     // A budget the process cannot hold is refused now, not when the cache fills.
     requireMemory(params_.cacheBytes(), "--cache-mb", "a sample cache");
   }
+  // runs/tradeoff/README.md "Presets": splat and oversampling moved accuracy; eps and a fixed
+  // fallback threshold did not beat their defaults on every scene.
+  std::vector<PresetOption> preset(Quality q) const override {
+    return pickPreset(q, {{"splat", "2"}, {"oversample", "0.5"}},
+                      {{"splat", "1"}, {"oversample", "1"}},
+                      {{"splat", "1"}, {"oversample", "2"}, {"eps", "1.2"}});
+  }
   nlohmann::json parameters() const override { return params_.toJson(); }
   std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const override {
     return std::make_unique<rzb::RzbRenderer>(scene, options, params_);

@@ -80,6 +80,11 @@ class SampleTreeMethod : public Method {
     // A budget the process cannot hold is refused now, not when the cache fills.
     requireMemory(uint64_t(st_.cacheMb * 1024.0 * 1024.0), "--cache-mb", "a node cache");
   }
+  // runs/tradeoff/README.md "Presets".
+  std::vector<PresetOption> preset(Quality q) const override {
+    return pickPreset(q, {{"splat", "2"}, {"c", "0"}}, {{"splat", "1"}, {"c", "5"}},
+                      {{"splat", "1"}, {"c", "0"}});
+  }
   nlohmann::json parameters() const override {
     return {{"tree", st_.treePath.empty() ? "in memory" : st_.treePath},
             {"c", st_.c},

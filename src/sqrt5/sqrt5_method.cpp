@@ -34,6 +34,10 @@ class Sqrt5Method : public Method {
         ->capture_default_str();
   }
   void validate() override { params_ = sqrt5::parseSqrt5Options(t_); }
+  // runs/tradeoff/README.md "Presets".
+  std::vector<PresetOption> preset(Quality q) const override {
+    return pickPreset(q, {{"amin", "1"}}, {{"amin", "0.5"}}, {{"amin", "0.25"}});
+  }
   nlohmann::json parameters() const override { return params_.toJson(); }
   std::unique_ptr<Renderer> create(const Scene& scene,
                                    const RenderOptions& options) const override {

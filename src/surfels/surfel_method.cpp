@@ -60,6 +60,13 @@ class SurfelMethod : public Method {
         ->capture_default_str();
   }
   void validate() override { params_ = surfels::parseSurfelOptions(t_); }
+  // runs/tradeoff/README.md "Presets": the sprite size is the trade; grids up to 64 cells were
+  // both faster and more accurate than finer ones (objects no level fits stay polygons), so
+  // balanced and exact agree.
+  std::vector<PresetOption> preset(Quality q) const override {
+    const PresetOption grids{"surfel-grids", "1,2,4,8,16,32,64"};
+    return pickPreset(q, {{"splat", "2"}, grids}, {{"splat", "1"}, grids}, {{"splat", "1"}, grids});
+  }
   nlohmann::json parameters() const override { return params_.toJson(); }
   std::unique_ptr<Renderer> create(const Scene& scene,
                                    const RenderOptions& options) const override {
