@@ -67,6 +67,7 @@ SWEEPS = {
     "surfels": [("surfels", ["--surfel-build", "setup"],
                  ["surfel-grids=" + ";".join(grids_up_to(g) for g in (64, 128, 256)),
                   "splat=1,2,4"])],
+    "sqrt5": [("sqrt5", [], ["amin=0.25,0.5,1,2"])],
 }
 EXACT = {"raycast", "zbuffer"}
 FIELDS = ["scene", "method", "config", "reference", "frames", "median_frame_s", "setup_s",
