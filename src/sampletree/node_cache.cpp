@@ -1,5 +1,6 @@
 #include "src/sampletree/node_cache.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -65,6 +66,16 @@ void NodeCache::release(std::span<const uint32_t> nodes) {
     Entry& e = entries_.at(n);
     if (--e.pins == 0 && e.state == State::kResident) unpinToLru(n, e);
   }
+}
+
+std::vector<uint32_t> NodeCache::residentFirst(std::span<const uint32_t> nodes) const {
+  std::vector<uint32_t> out(nodes.begin(), nodes.end());
+  std::lock_guard lock(mutex_);
+  std::stable_partition(out.begin(), out.end(), [&](uint32_t n) {
+    const auto it = entries_.find(n);
+    return it != entries_.end() && it->second.state == State::kResident;
+  });
+  return out;
 }
 
 void NodeCache::touch(std::span<const uint32_t> nodes) {

@@ -48,6 +48,9 @@ class NodeCache {
   // returned payloads stay valid until release(nodes).
   std::vector<const NodePayload*> acquire(std::span<const uint32_t> nodes);
   void release(std::span<const uint32_t> nodes);
+  // `nodes` with the resident ones first (each part in its order): a frame larger than the cache
+  // draws what the last frame left before streaming the rest, instead of evicting it unused.
+  std::vector<uint32_t> residentFirst(std::span<const uint32_t> nodes) const;
   // Marks the resident ones of `nodes` used in this frame, so this frame's prefetch spares them.
   void touch(std::span<const uint32_t> nodes);
   // Queues nodes for the loader after any demand (replacing the queue).

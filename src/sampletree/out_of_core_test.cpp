@@ -171,6 +171,24 @@ TEST(OutOfCore, CountersAddUpAndASecondFrameLoadsNothing) {
   EXPECT_TRUE(sameKeys(first.fb, second.fb));
 }
 
+// A frame three times the cache streams in batches, in the same order every frame: the next
+// frame finds the nodes the cache kept (LRU evicted each just before it was needed again: 0 hits).
+TEST(OutOfCore, AFrameLargerThanTheCacheKeepsPartOfItForTheNext) {
+  const Camera camera = walk()[3];
+  const uint64_t payload = framePayload(readTree(store().string()), camera, 1);
+  const uint64_t budget = std::max(payload / 3, 2 * largestNode());
+  ASSERT_LT(budget, payload);
+  SampleTreeRenderer r = makeRenderer(options(double(budget), 1, 0));
+  const Frame first = renderFrame(r, camera);
+  const Frame second = renderFrame(r, camera);
+  EXPECT_GT(first.count("draw_batches"), 1.0);
+  EXPECT_TRUE(sameKeys(first.fb, second.fb));
+  // At least half of what fits beside one batch is reused.
+  const double drawn = second.count("nodes_drawn");
+  EXPECT_GT(second.count("cache_hits"), 0.15 * drawn) << "of " << drawn << " nodes";
+  EXPECT_EQ(second.count("cache_hits") + second.count("nodes_loaded"), drawn);
+}
+
 TEST(OutOfCore, PrefetchLoadsWhatTheNextFrameNeeds) {
   const std::vector<Camera> cameras = walk();
   double hits[3] = {0, 0, 0};

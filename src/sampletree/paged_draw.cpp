@@ -32,6 +32,8 @@ uint64_t drawPaged(NodeCache& cache, const SampleTree& table, std::span<const ui
                    const Camera& camera, int threads, NativeRasterizer& raster,
                    SoupStaging& staging, Framebuffer& fb) {
   uint64_t batches = 0;
+  const std::vector<uint32_t> order = cache.residentFirst(nodes);  // keys: any order, one image
+  nodes = order;
   for (size_t begin = 0; begin < nodes.size(); ++batches) {
     const size_t end = batchEnd(table, nodes, begin, cache.budget());
     const std::span<const uint32_t> batch = nodes.subspan(begin, end - begin);

@@ -3,7 +3,9 @@
 // the cache's budget (one batch when the frame's nodes fit), each acquired (loading what is
 // missing, waiting for it), copied into one triangle soup, drawn by the native z-buffer and
 // released. The z-buffer keeps the nearer (depth, ID) at each pixel whatever the order, so any
-// batching gives the image of one draw of them all, i.e. the in-core renderer's.
+// batching gives the image of one draw of them all, i.e. the in-core renderer's. The nodes the
+// cache holds are drawn first: a frame larger than the cache then reuses what the last one left
+// (in preorder every frame, each batch would evict the nodes the next frame starts with).
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -21,7 +23,7 @@ struct SoupStaging {
   std::vector<uint64_t> ids;
 };
 
-// nodes: in preorder, each with triangles and its payload within the cache's budget.
+// nodes: each with triangles and its payload within the cache's budget.
 // Returns the number of batches drawn.
 uint64_t drawPaged(NodeCache& cache, const SampleTree& table, std::span<const uint32_t> nodes,
                    const Camera& camera, int threads, NativeRasterizer& raster,
