@@ -1,6 +1,5 @@
 #include "src/cli/quality.hpp"
 
-#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -19,20 +18,12 @@ Quality parseQuality(const std::string& text) {
 void applyQuality(const CLI::App& command, RenderArgs& args) {
   if (args.quality.empty()) return;
   const Quality q = parseQuality(args.quality);
-  std::vector<std::string> argv = {args.scene};
+  std::vector<std::string> options;
   for (const PresetOption& o : methodNamed(args.method, "--method").preset(q)) {
     const CLI::Option* given = command.get_option_no_throw("--" + o.name);
-    if (!given || given->count() == 0) argv.push_back("--" + o.name + "=" + o.value);
+    if (!given || given->count() == 0) options.push_back("--" + o.name + "=" + o.value);
   }
-  if (argv.size() == 1) return;
-  std::reverse(argv.begin(), argv.end());  // CLI11 takes the arguments last first
-  CLI::App preset;
-  addRenderOptions(preset, args);  // binds the registered methods' options, as `lzb render` does
-  try {
-    preset.parse(argv);
-  } catch (const CLI::ParseError& e) {
-    throw InputError("--quality " + args.quality + ": " + e.what());
-  }
+  if (!options.empty()) parseRenderOverrides(args, options, "--quality " + args.quality);
 }
 
 }  // namespace lzb

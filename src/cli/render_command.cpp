@@ -72,6 +72,19 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
   for (const auto& m : methods()) m->addOptions(c);
 }
 
+void parseRenderOverrides(RenderArgs& args, const std::vector<std::string>& options,
+                          const std::string& where) {
+  std::vector<std::string> argv(options.rbegin(), options.rend());  // CLI11 takes them last first
+  argv.push_back(args.scene);
+  CLI::App command;
+  addRenderOptions(command, args);
+  try {
+    command.parse(argv);
+  } catch (const CLI::ParseError& e) {
+    throw InputError(where + ": " + e.what());
+  }
+}
+
 namespace {
 
 // Renders the reference of frame f (centres, then sub-samples) and adds the test image's

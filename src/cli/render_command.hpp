@@ -3,6 +3,7 @@
 // images and report.json at the root rank.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -28,6 +29,11 @@ struct RenderArgs {
 };
 
 void addRenderOptions(CLI::App& command, RenderArgs& args);
+// Parses `--NAME=VALUE` texts into `args` with the render command's own options, so method
+// options land in the registered methods as for `lzb render`; the other fields keep their values.
+// Throws InputError `where: ...` for a text CLI11 refuses.
+void parseRenderOverrides(RenderArgs& args, const std::vector<std::string>& options,
+                          const std::string& where);
 // Returns the process exit status. Throws InputError for bad input (on every rank alike).
 int runRender(const RenderArgs& args, const mpi::Group& g, const std::string& commandLine);
 

@@ -103,19 +103,14 @@ void checkSweepNames(const SweepGrid& grid, Method& method, const CLI::App& comm
 
 RenderArgs applyCombination(const RenderArgs& base, const SweepGrid& grid, uint64_t k) {
   RenderArgs args = base;
-  CLI::App command;
-  addRenderOptions(command, args);
-  std::vector<std::string> argv = {base.scene};
+  std::vector<std::string> options;
   const std::vector<std::string> values = grid.values(k);
   for (size_t i = 0; i < values.size(); ++i)
-    argv.push_back("--" + grid.params[i].name + "=" + values[i]);
-  std::reverse(argv.begin(), argv.end());  // CLI11 takes the arguments last first
+    options.push_back("--" + grid.params[i].name + "=" + values[i]);
   const std::string where = "--param " + grid.label(k);
+  parseRenderOverrides(args, options, where);
   try {
-    command.parse(argv);
     validateRenderArgs(args);
-  } catch (const CLI::ParseError& e) {
-    throw InputError(where + ": " + e.what());
   } catch (const InputError& e) {
     throw InputError(where + ": " + e.what());
   }
