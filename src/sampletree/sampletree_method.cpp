@@ -71,8 +71,8 @@ class SampleTreeMethod : public Method {
     if (!st_.treePath.empty())
       require(std::filesystem::is_regular_file(st_.treePath), "--tree",
               st_.treePath + " is not a file");
+    validateNodeServer();  // first: its message says what --node-server needs
     validateCache();
-    validateNodeServer();
   }
   void validateCache() const {
     require(std::isfinite(st_.cacheMb) && st_.cacheMb >= 0.0 && st_.cacheMb <= kMaxCacheMb,
