@@ -180,7 +180,7 @@ TEST(SampleTreeCli, OutOfCoreCorruptionFoundAtRenderTimeEndsTheJob) {
 
 // --node-server needs a store, a node cache, at least 2 ranks and one frame group: otherwise exit
 // status 2 naming --node-server, nothing written. A store the server cannot open fails every rank
-// alike (one message naming the store).
+// alike (one message naming the store); so do the refusals after it has started serving.
 TEST(SampleTreeCli, NodeServerRefusals) {
   const fs::path dir = freshDir("sampletree_node_server_refused");
   const fs::path store = buildStore(dir, kScene, "--leaf-triangles 8");
@@ -214,6 +214,18 @@ TEST(SampleTreeCli, NodeServerRefusals) {
   EXPECT_NE(r.output.find("truncated"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("rank "), std::string::npos) << "one message for every rank: " << r.output;
   EXPECT_FALSE(fs::exists(out));
+  // Refusals after the server started serving (a cache below the largest node, on 3 ranks; a store
+  // of another scene): every render rank says goodbye, the server stops, no rank hangs.
+  const std::string three = "timeout 120 " + std::string(LZB_MPIEXEC) + " -n 3 --oversubscribe ";
+  const RunResult small = runLzb(render + tree + " --cache-mb 0.0001 --out " + (dir / "small").string(), three);
+  EXPECT_EQ(small.status, 2) << small.output;
+  EXPECT_NE(small.output.find("--cache-mb"), std::string::npos) << small.output;
+  EXPECT_FALSE(fs::exists(dir / "small"));
+  const RunResult other = runLzb("render 'builtin:sphereflake?depth=1' --method sampletree --node-server "
+                                 "--cache-mb 8" + tree + kView + " --out " + (dir / "other").string(), two);
+  EXPECT_EQ(other.status, 2) << other.output;
+  EXPECT_NE(other.output.find(store.string()), std::string::npos) << other.output;
+  EXPECT_FALSE(fs::exists(dir / "other"));
 }
 
 TEST(SampleTreeCli, BuildTreeRefusesBadInputAndWritesNothing) {
