@@ -1,0 +1,81 @@
+#pragma once
+// The triangles a sample tree is built from, as a stream: world vertices, colour and expanded ID,
+// in expanded-ID order, the same on every pass. The external construction (external_build.hpp)
+// reads it several times instead of holding it; the in-memory one gathers it (tree_input.hpp).
+#include <cstdint>
+#include <functional>
+#include <span>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "src/core/color.hpp"
+#include "src/core/scene.hpp"
+
+namespace lzb::sampletree {
+
+// One triangle as streamed and as spilled to disk (48 bytes, no padding).
+struct StreamTriangle {
+  glm::vec3 v[3];
+  Rgba8 colour;
+  uint64_t id;
+};
+static_assert(sizeof(StreamTriangle) == 48, "spill files keep triangles byte for byte");
+
+using TriangleSink = std::function<void(std::span<const StreamTriangle>)>;
+
+class TriangleStream {
+ public:
+  virtual ~TriangleStream() = default;
+  // The input, for messages.
+  virtual const std::string& where() const = 0;
+  // Triangles a pass is expected to give (for progress lines; a pass counts the real number).
+  virtual uint64_t expected() const = 0;
+  // Hands every triangle to sink, in batches, in expanded-ID order.
+  virtual void forEach(const TriangleSink& sink) const = 0;
+};
+
+// A loaded scene's expanded triangles, instances flattened.
+class SceneStream : public TriangleStream {
+ public:
+  explicit SceneStream(const Scene& scene) : scene_(scene) {}
+  const std::string& where() const override { return scene_.source; }
+  uint64_t expected() const override { return scene_.expandedTriangles(); }
+  void forEach(const TriangleSink& sink) const override;
+
+ private:
+  const Scene& scene_;
+};
+
+// A generator's meshes, handed out in chunks (one node, no instances: the IDs count up from 0),
+// regenerated on every pass: a scene that is never held whole.
+class MeshChunkStream : public TriangleStream {
+ public:
+  using Generator = std::function<void(const std::function<void(const Mesh&)>&)>;
+  MeshChunkStream(std::string where, uint64_t expected, Generator generate)
+      : where_(std::move(where)), expected_(expected), generate_(std::move(generate)) {}
+  const std::string& where() const override { return where_; }
+  uint64_t expected() const override { return expected_; }
+  void forEach(const TriangleSink& sink) const override;
+
+ private:
+  std::string where_;
+  uint64_t expected_;
+  Generator generate_;
+};
+
+// Another stream read ahead by a thread of its own, a few batches at most, so producing the
+// triangles (a generator, a file) overlaps with what the sink does with them.
+class ReadAheadStream : public TriangleStream {
+ public:
+  explicit ReadAheadStream(const TriangleStream& in, size_t batches = 4) : in_(in), depth_(batches) {}
+  const std::string& where() const override { return in_.where(); }
+  uint64_t expected() const override { return in_.expected(); }
+  void forEach(const TriangleSink& sink) const override;
+
+ private:
+  const TriangleStream& in_;
+  size_t depth_;
+};
+
+}  // namespace lzb::sampletree
