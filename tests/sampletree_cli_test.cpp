@@ -66,6 +66,25 @@ TEST(SampleTreeCli, StoredTreeRendersLikeTheTreeBuiltInMemory) {
   EXPECT_EQ(rep["setup"]["counts"]["tree_seed"].get<double>(), 4.0) << "the store's seed, not --seed";
 }
 
+// Out of core (--mem-mb, buckets of ~6,000 triangles on 2 threads): a loaded scene streamed and a
+// generator streamed without loading write the in-memory build's store byte for byte, and leave
+// no scratch files.
+TEST(SampleTreeCli, OutOfCoreBuildWritesTheInMemoryStore) {
+  for (const std::string& scene : {kScene, std::string("'builtin:landscape?objects=800'")}) {
+    const fs::path dir = freshDir("sampletree_external");
+    const RunResult a = runLzb("build-tree " + scene + " --threads 2 --quiet --out " +
+                               (dir / "memory.lzbtree").string());
+    ASSERT_EQ(a.status, 0) << a.output;
+    const RunResult b = runLzb("build-tree " + scene + " --threads 2 --mem-mb 4 --out " +
+                               (dir / "external.lzbtree").string());
+    ASSERT_EQ(b.status, 0) << b.output;
+    EXPECT_NE(b.output.find("built out of core"), std::string::npos) << b.output;
+    EXPECT_EQ(b.output.find(" 1 buckets"), std::string::npos) << "one bucket: nothing split\n" << b.output;
+    EXPECT_EQ(readBytes(dir / "external.lzbtree"), readBytes(dir / "memory.lzbtree")) << scene;
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2) << scene;
+  }
+}
+
 // Damage of every kind: exit status 2, the store named, no output folder.
 TEST(SampleTreeCli, DamagedStoresAreRefused) {
   const fs::path dir = freshDir("sampletree_damaged");
@@ -177,6 +196,9 @@ TEST(SampleTreeCli, BuildTreeRefusesBadInputAndWritesNothing) {
   // The last: 2^25 expanded triangles, above the in-core limit of this milestone.
   for (const std::string& args : {std::string("build-tree builtin:teapot"), "build-tree " + kScene + " --c -1",
                                   "build-tree " + kScene + " --leaf-triangles 0",
+                                  "build-tree " + kScene + " --mem-mb 0.001",
+                                  "build-tree " + kScene + " --mem-mb -5",
+                                  std::string("build-tree 'builtin:landscape?objects=-1' --mem-mb 64"),
                                   std::string("build-tree 'builtin:chessboard?n=4096'")}) {
     const RunResult r = runLzb(args + " --out " + store.string() + " --quiet");
     EXPECT_EQ(r.status, 2) << args << ": " << r.output;

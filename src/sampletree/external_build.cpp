@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -358,7 +359,11 @@ ExternalReport buildTreeExternal(const TriangleStream& source, const TreeParams&
   require(options.bucketTriangles > params.leafTriangles, "--mem-mb",
           "a bucket must hold more triangles than a leaf");
   ExternalReport report;
-  const ReadAheadStream ahead(source);
+  const ScratchDir dir(options.scratchDir);
+  // A generator is copied on the first pass and read back: it costs more to run than to read.
+  std::optional<CopiedStream> copied;
+  if (source.regenerates()) copied.emplace(source, dir.path / "input");
+  const ReadAheadStream ahead(copied ? static_cast<const TriangleStream&>(*copied) : source);
   const PassStream in(ahead, options.progress, report);
   const Bounds bounds = boundsPass(in, report.triangles);
   requireFloatResolves(bounds, in.where());
@@ -383,7 +388,6 @@ ExternalReport buildTreeExternal(const TriangleStream& source, const TreeParams&
   report.buckets = plan.buckets.size();
   report.topCells = plan.tops;
 
-  const ScratchDir dir(options.scratchDir);
   ScratchArrays scratch(dir.path);
   std::vector<BucketResult> buckets;
   TriangleInput topInput;
@@ -391,6 +395,7 @@ ExternalReport buildTreeExternal(const TriangleStream& source, const TreeParams&
   {
     SpillFile spill(dir.path / "spill", plan.buckets.size(), options.bufferTriangles);
     const auto stays = writingPass(in, frame, census, plan, spill, options.topTriangles);
+    if (copied) copied->drop();  // the last pass
     report.spillBytes = spill.bytesWritten();
     const Stopwatch clock;
     buckets = buildBuckets(plan, spill, frame, params, threads, options, topInput, scratch);

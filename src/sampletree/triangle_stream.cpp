@@ -1,5 +1,6 @@
 #include "src/sampletree/triangle_stream.hpp"
 
+#include <algorithm>
 #include <condition_variable>
 #include <deque>
 #include <exception>
@@ -105,6 +106,31 @@ void ReadAheadStream::forEach(const TriangleSink& sink) const {
   }
   reader.join();
   if (q.error) std::rethrow_exception(q.error);
+}
+
+CopiedStream::CopiedStream(const TriangleStream& in, std::filesystem::path copy)
+    : in_(in), copy_(std::make_unique<ScratchFile>(std::move(copy))) {}
+
+CopiedStream::~CopiedStream() = default;
+
+void CopiedStream::drop() { copy_.reset(); }
+
+void CopiedStream::forEach(const TriangleSink& sink) const {
+  if (!copied_) {
+    in_.forEach([&](std::span<const StreamTriangle> batch) {
+      copy_->append(batch.data(), batch.size_bytes());
+      sink(batch);
+    });
+    copied_ = true;
+    return;
+  }
+  std::vector<StreamTriangle> batch;
+  const uint64_t total = copy_->size() / sizeof(StreamTriangle);
+  for (uint64_t done = 0; done < total; done += kBatch) {
+    batch.resize(size_t(std::min<uint64_t>(kBatch, total - done)));
+    copy_->read(done * sizeof(StreamTriangle), batch.size() * sizeof(StreamTriangle), batch.data());
+    sink(batch);
+  }
 }
 
 }  // namespace lzb::sampletree

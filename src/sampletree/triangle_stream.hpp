@@ -3,7 +3,9 @@
 // in expanded-ID order, the same on every pass. The external construction (external_build.hpp)
 // reads it several times instead of holding it; the in-memory one gathers it (tree_input.hpp).
 #include <cstdint>
+#include <filesystem>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 
@@ -11,6 +13,7 @@
 
 #include "src/core/color.hpp"
 #include "src/core/scene.hpp"
+#include "src/sampletree/scratch_file.hpp"
 
 namespace lzb::sampletree {
 
@@ -33,6 +36,8 @@ class TriangleStream {
   virtual uint64_t expected() const = 0;
   // Hands every triangle to sink, in batches, in expanded-ID order.
   virtual void forEach(const TriangleSink& sink) const = 0;
+  // True when every pass makes the triangles anew (a generator): a copy on disk reads faster.
+  virtual bool regenerates() const { return false; }
 };
 
 // A loaded scene's expanded triangles, instances flattened.
@@ -57,6 +62,7 @@ class MeshChunkStream : public TriangleStream {
   const std::string& where() const override { return where_; }
   uint64_t expected() const override { return expected_; }
   void forEach(const TriangleSink& sink) const override;
+  bool regenerates() const override { return true; }
 
  private:
   std::string where_;
@@ -76,6 +82,24 @@ class ReadAheadStream : public TriangleStream {
  private:
   const TriangleStream& in_;
   size_t depth_;
+};
+
+// Another stream copied to a scratch file on its first pass and read back from it on the later
+// ones (for a generator: 48 bytes a triangle on disk instead of generating it again).
+class CopiedStream : public TriangleStream {
+ public:
+  CopiedStream(const TriangleStream& in, std::filesystem::path copy);
+  ~CopiedStream() override;
+  const std::string& where() const override { return in_.where(); }
+  uint64_t expected() const override { return in_.expected(); }
+  void forEach(const TriangleSink& sink) const override;
+  // Removes the copy (no pass may follow).
+  void drop();
+
+ private:
+  const TriangleStream& in_;
+  std::unique_ptr<ScratchFile> copy_;
+  mutable bool copied_ = false;
 };
 
 }  // namespace lzb::sampletree
