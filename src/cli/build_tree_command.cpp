@@ -1,5 +1,7 @@
 #include "src/cli/build_tree_command.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -14,6 +16,7 @@
 #include "src/sampletree/tree_store.hpp"
 #include "src/scene/builtin.hpp"
 #include "src/scene/load.hpp"
+#include "src/scene/ply_stream.hpp"
 
 namespace lzb {
 
@@ -38,12 +41,44 @@ namespace {
 
 constexpr double kMaxMemMb = 1048576.0;  // 1 TiB
 
-// The scene as a stream: a streaming generator regenerates it on every pass and is never held;
-// any other scene is loaded and its expanded triangles streamed.
+// The scene as a stream: a streaming generator regenerates it on every pass and a binary PLY
+// file is read again on every pass, neither held whole; any other scene is loaded and its
+// expanded triangles streamed.
 struct SceneInput {
   std::optional<Scene> scene;
+  std::unique_ptr<PlyMeshStream> ply;
   std::unique_ptr<sampletree::TriangleStream> stream;
 };
+
+bool isPly(const std::string& spec) {
+  std::string ext = std::filesystem::path(spec).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return ext == ".ply";
+}
+
+// The PLY file streamed, or false (with a note why) when it is left to the loader.
+bool openPlyStream(const std::string& spec, bool quiet, SceneInput& in) {
+  std::string why;
+  in.ply = PlyMeshStream::open(spec, why);
+  if (!in.ply) {
+    if (!quiet)
+      std::fprintf(stderr, "note: %s: loaded whole, not streamed (%s)\n", spec.c_str(),
+                   why.c_str());
+    return false;
+  }
+  const LoadStats& s = in.ply->stats();
+  if (!quiet && (s.degenerate > 0 || s.nonFinite > 0))
+    std::fprintf(stderr,
+                 "warning: %s: dropped %llu degenerate and %llu non-finite triangles (%llu kept)\n",
+                 spec.c_str(), (unsigned long long)s.degenerate, (unsigned long long)s.nonFinite,
+                 (unsigned long long)s.loaded);
+  const PlyMeshStream& ply = *in.ply;
+  in.stream = std::make_unique<sampletree::PlacedChunkStream>(
+      spec, ply.triangles(), ply.placement(),
+      [&ply](const std::function<void(const Mesh&)>& out) { ply.forEachChunk(out); });
+  return true;
+}
 
 SceneInput openSceneStream(const std::string& spec, bool quiet) {
   SceneInput in;
@@ -54,6 +89,7 @@ SceneInput openSceneStream(const std::string& spec, bool quiet) {
                                                                 std::move(chunks->generate));
       return in;
     }
+  if (isPly(spec) && openPlyStream(spec, quiet, in)) return in;
   in.scene = loadScene(spec, quiet);
   in.stream = std::make_unique<sampletree::SceneStream>(*in.scene);
   return in;

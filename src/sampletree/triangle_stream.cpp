@@ -14,6 +14,11 @@ namespace {
 
 constexpr size_t kBatch = 1 << 16;  // triangles handed to a sink at once
 
+// A node-frame vertex in the world, as every stream of a placed node computes it.
+glm::vec3 placed(const glm::dmat4& transform, const glm::vec3& v) {
+  return glm::vec3(transform * glm::dvec4(glm::dvec3(v), 1.0));
+}
+
 }  // namespace
 
 void SceneStream::forEach(const TriangleSink& sink) const {
@@ -23,8 +28,7 @@ void SceneStream::forEach(const TriangleSink& sink) const {
     const Mesh& mesh = scene_.nodes[item.node].mesh;
     for (size_t t = 0; t < mesh.size(); ++t) {
       StreamTriangle s;
-      for (int k = 0; k < 3; ++k)
-        s.v[k] = glm::vec3(item.transform * glm::dvec4(glm::dvec3(mesh.vertex(t, k)), 1.0));
+      for (int k = 0; k < 3; ++k) s.v[k] = placed(item.transform, mesh.vertex(t, k));
       s.colour = mesh.colors[t];
       s.id = item.idBase + t;
       batch.push_back(s);
@@ -41,6 +45,20 @@ void MeshChunkStream::forEach(const TriangleSink& sink) const {
     batch.resize(mesh.size());
     for (size_t t = 0; t < mesh.size(); ++t) {
       for (int k = 0; k < 3; ++k) batch[t].v[k] = mesh.vertex(t, k);
+      batch[t].colour = mesh.colors[t];
+      batch[t].id = next++;
+    }
+    sink(batch);
+  });
+}
+
+void PlacedChunkStream::forEach(const TriangleSink& sink) const {
+  uint64_t next = 0;
+  std::vector<StreamTriangle> batch;
+  read_([&](const Mesh& mesh) {
+    batch.resize(mesh.size());
+    for (size_t t = 0; t < mesh.size(); ++t) {
+      for (int k = 0; k < 3; ++k) batch[t].v[k] = placed(placement_, mesh.vertex(t, k));
       batch[t].colour = mesh.colors[t];
       batch[t].id = next++;
     }

@@ -70,6 +70,29 @@ class MeshChunkStream : public TriangleStream {
   Generator generate_;
 };
 
+// A mesh file's triangles read in chunks on every pass (a streaming reader such as
+// src/scene/ply_stream.hpp): one node placed into the world by `placement`, as the loaded file's
+// node is, so the world vertices are SceneStream's bit for bit; the IDs count up from 0. Reading
+// the file again costs less disk than a copy of its triangles (48 bytes each), so no copy is made.
+class PlacedChunkStream : public TriangleStream {
+ public:
+  using Reader = std::function<void(const std::function<void(const Mesh&)>&)>;
+  PlacedChunkStream(std::string where, uint64_t expected, const glm::dmat4& placement, Reader read)
+      : where_(std::move(where)),
+        expected_(expected),
+        placement_(placement),
+        read_(std::move(read)) {}
+  const std::string& where() const override { return where_; }
+  uint64_t expected() const override { return expected_; }
+  void forEach(const TriangleSink& sink) const override;
+
+ private:
+  std::string where_;
+  uint64_t expected_;
+  glm::dmat4 placement_;
+  Reader read_;
+};
+
 // Another stream read ahead by a thread of its own, a few batches at most, so producing the
 // triangles (a generator, a file) overlaps with what the sink does with them.
 class ReadAheadStream : public TriangleStream {
