@@ -74,9 +74,10 @@ bool openPlyStream(const std::string& spec, bool quiet, SceneInput& in) {
                  spec.c_str(), (unsigned long long)s.degenerate, (unsigned long long)s.nonFinite,
                  (unsigned long long)s.loaded);
   const PlyMeshStream& ply = *in.ply;
-  in.stream = std::make_unique<sampletree::PlacedChunkStream>(
-      spec, ply.triangles(), ply.placement(),
-      [&ply](const std::function<void(const Mesh&)>& out) { ply.forEachChunk(out); });
+  in.stream = std::make_unique<sampletree::MeshChunkStream>(
+      spec, ply.triangles(),
+      [&ply](const std::function<void(const Mesh&)>& out) { ply.forEachChunk(out); },
+      sampletree::MeshChunkStream::Kind::kFile, ply.placement());
   return true;
 }
 
@@ -85,8 +86,9 @@ SceneInput openSceneStream(const std::string& spec, bool quiet) {
   const std::string prefix = "builtin:";
   if (spec.rfind(prefix, 0) == 0)
     if (auto chunks = builtinChunks(spec.substr(prefix.size()))) {
-      in.stream = std::make_unique<sampletree::MeshChunkStream>(spec, chunks->triangles,
-                                                                std::move(chunks->generate));
+      in.stream = std::make_unique<sampletree::MeshChunkStream>(
+          spec, chunks->triangles, std::move(chunks->generate),
+          sampletree::MeshChunkStream::Kind::kGenerator);
       return in;
     }
   if (isPly(spec) && openPlyStream(spec, quiet, in)) return in;

@@ -1,4 +1,4 @@
-// A binary PLY file streamed (src/scene/ply_stream.hpp through PlacedChunkStream) gives the
+// A binary PLY file streamed (src/scene/ply_stream.hpp through MeshChunkStream) gives the
 // triangles the loaded scene streams (SceneStream of loadScene), bit for bit: polygons split,
 // vertex colours averaged, degenerate and non-finite faces dropped, far geometry recentred, in
 // either byte order; malformed files are refused naming the file, and files the loader reads
@@ -125,8 +125,9 @@ void expectStreamedEqualsLoaded(const fs::path& file) {
   const auto ply = PlyMeshStream::open(file, why);
   ASSERT_TRUE(ply) << why;
   const Scene scene = loadScene(file.string(), true);
-  const PlacedChunkStream streamed(file.string(), ply->triangles(), ply->placement(),
-                                   [&](const auto& out) { ply->forEachChunk(out, 50); });
+  const MeshChunkStream streamed(file.string(), ply->triangles(),
+                                 [&](const auto& out) { ply->forEachChunk(out, 50); },
+                                 MeshChunkStream::Kind::kFile, ply->placement());
   const std::vector<StreamTriangle> a = gather(streamed), b = gather(SceneStream(scene));
   EXPECT_EQ(ply->triangles(), scene.expandedTriangles());
   EXPECT_EQ(ply->stats().degenerate, scene.stats.degenerate);

@@ -41,21 +41,7 @@ void SceneStream::forEach(const TriangleSink& sink) const {
 void MeshChunkStream::forEach(const TriangleSink& sink) const {
   uint64_t next = 0;
   std::vector<StreamTriangle> batch;
-  generate_([&](const Mesh& mesh) {
-    batch.resize(mesh.size());
-    for (size_t t = 0; t < mesh.size(); ++t) {
-      for (int k = 0; k < 3; ++k) batch[t].v[k] = mesh.vertex(t, k);
-      batch[t].colour = mesh.colors[t];
-      batch[t].id = next++;
-    }
-    sink(batch);
-  });
-}
-
-void PlacedChunkStream::forEach(const TriangleSink& sink) const {
-  uint64_t next = 0;
-  std::vector<StreamTriangle> batch;
-  read_([&](const Mesh& mesh) {
+  source_([&](const Mesh& mesh) {
     batch.resize(mesh.size());
     for (size_t t = 0; t < mesh.size(); ++t) {
       for (int k = 0; k < 3; ++k) batch[t].v[k] = placed(placement_, mesh.vertex(t, k));

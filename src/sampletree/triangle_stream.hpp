@@ -52,45 +52,30 @@ class SceneStream : public TriangleStream {
   const Scene& scene_;
 };
 
-// A generator's meshes, handed out in chunks (one node, no instances: the IDs count up from 0),
-// regenerated on every pass: a scene that is never held whole.
+// One node's meshes handed out in chunks on every pass (no instances: the IDs count up from 0),
+// placed into the world by `placement` as the loaded node is, so the world vertices are
+// SceneStream's bit for bit (even -0.0 becomes +0.0 the same way). A generator (builtin:landscape)
+// makes them anew each pass: regenerates() lets the build copy them once. A streaming file reader
+// (src/scene/ply_stream.hpp) reads them again: that costs less disk than a 48-byte-a-triangle copy.
 class MeshChunkStream : public TriangleStream {
  public:
-  using Generator = std::function<void(const std::function<void(const Mesh&)>&)>;
-  MeshChunkStream(std::string where, uint64_t expected, Generator generate)
-      : where_(std::move(where)), expected_(expected), generate_(std::move(generate)) {}
+  using Source = std::function<void(const std::function<void(const Mesh&)>&)>;
+  enum class Kind { kGenerator, kFile };
+  MeshChunkStream(std::string where, uint64_t expected, Source source, Kind kind,
+                  const glm::dmat4& placement = glm::dmat4(1.0))
+      : where_(std::move(where)), expected_(expected), source_(std::move(source)), kind_(kind),
+        placement_(placement) {}
   const std::string& where() const override { return where_; }
   uint64_t expected() const override { return expected_; }
   void forEach(const TriangleSink& sink) const override;
-  bool regenerates() const override { return true; }
+  bool regenerates() const override { return kind_ == Kind::kGenerator; }
 
  private:
   std::string where_;
   uint64_t expected_;
-  Generator generate_;
-};
-
-// A mesh file's triangles read in chunks on every pass (a streaming reader such as
-// src/scene/ply_stream.hpp): one node placed into the world by `placement`, as the loaded file's
-// node is, so the world vertices are SceneStream's bit for bit; the IDs count up from 0. Reading
-// the file again costs less disk than a copy of its triangles (48 bytes each), so no copy is made.
-class PlacedChunkStream : public TriangleStream {
- public:
-  using Reader = std::function<void(const std::function<void(const Mesh&)>&)>;
-  PlacedChunkStream(std::string where, uint64_t expected, const glm::dmat4& placement, Reader read)
-      : where_(std::move(where)),
-        expected_(expected),
-        placement_(placement),
-        read_(std::move(read)) {}
-  const std::string& where() const override { return where_; }
-  uint64_t expected() const override { return expected_; }
-  void forEach(const TriangleSink& sink) const override;
-
- private:
-  std::string where_;
-  uint64_t expected_;
+  Source source_;
+  Kind kind_;
   glm::dmat4 placement_;
-  Reader read_;
 };
 
 // Another stream read ahead by a thread of its own, a few batches at most, so producing the
