@@ -42,10 +42,11 @@ int SubGroups::rootOf(int k) const {
   return int((int64_t(k) * parentSize_ + count_ - 1) / count_);
 }
 
-Session::Session(int* argc, char*** argv) {
+Session::Session(int* argc, char*** argv, bool threadsCallMpi) {
   int provided = 0;
-  // Only the main thread calls MPI; OpenMP threads never do.
-  LZB_MPI_CALL(MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided));
+  // OpenMP threads never call MPI; only the node server's threads need more than FUNNELED.
+  LZB_MPI_CALL(MPI_Init_thread(argc, argv, threadsCallMpi ? MPI_THREAD_MULTIPLE : MPI_THREAD_FUNNELED,
+                               &provided));
   if (provided < MPI_THREAD_FUNNELED) {
     // Every rank links the same MPI library, so every rank stops here alike.
     std::fprintf(stderr, "lzb: error: the MPI library provides thread level %d; lzb needs "

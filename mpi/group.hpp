@@ -47,9 +47,12 @@ class SubGroups {
 };
 
 // MPI_Init_thread on construction, MPI_Finalize on destruction (unless already finalized).
+// threadsCallMpi asks for MPI_THREAD_MULTIPLE (a thread besides the main one calls MPI: the
+// sample tree's node server and its clients' loaders); else MPI_THREAD_FUNNELED, which saves
+// Open MPI's locking on every call. Either way at least FUNNELED is required.
 class Session {
  public:
-  Session(int* argc, char*** argv);
+  Session(int* argc, char*** argv, bool threadsCallMpi = false);
   ~Session();
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;

@@ -253,6 +253,51 @@ TEST(SampleTreeCli, OutOfCoreCorruptionFoundAtRenderTimeEndsTheJob) {
                                "timeout 120 " + std::string(LZB_MPIEXEC) + " -n 2 --oversubscribe ");
   EXPECT_EQ(two.status, 2) << two.output;
   EXPECT_NE(two.output.find("corrupted"), std::string::npos) << two.output;
+  // The node server meets the damage: it ends the job, naming the store; the render rank, waiting
+  // for the reply, does not hang.
+  const RunResult served = runLzb(args + (dir / "served").string() + " --node-server",
+                                  "timeout 120 " + std::string(LZB_MPIEXEC) + " -n 2 --oversubscribe ");
+  EXPECT_EQ(served.status, 2) << served.output;
+  EXPECT_NE(served.output.find(store.string()), std::string::npos) << served.output;
+  EXPECT_NE(served.output.find("corrupted"), std::string::npos) << served.output;
+}
+
+// --node-server needs a store, a node cache, at least 2 ranks and one frame group: otherwise exit
+// status 2 naming --node-server, nothing written. A store the server cannot open fails every rank
+// alike (one message naming the store).
+TEST(SampleTreeCli, NodeServerRefusals) {
+  const fs::path dir = freshDir("sampletree_node_server_refused");
+  const fs::path store = buildStore(dir, kScene, "--leaf-triangles 8");
+  const std::string two = "timeout 120 " + std::string(LZB_MPIEXEC) + " -n 2 --oversubscribe ";
+  const std::string render = "render " + kScene + " --method sampletree --node-server" + kView;
+  const std::string tree = " --tree " + store.string();
+  struct Case {
+    std::string name, args, prefix, mention;
+  };
+  const std::vector<Case> cases = {
+      {"no_tree", render + " --cache-mb 8", two, "--tree"},
+      {"no_cache", render + tree, two, "--cache-mb"},
+      {"one_rank", render + tree + " --cache-mb 8", "", "2 MPI ranks"},
+      {"frame_groups", render + tree + " --cache-mb 8 --frame-groups 2", two, "--frame-groups"},
+  };
+  for (const Case& c : cases) {
+    const fs::path out = dir / ("out_" + c.name);
+    const RunResult r = runLzb(c.args + " --out " + out.string(), c.prefix);
+    EXPECT_EQ(r.status, 2) << c.name << ": " << r.output;
+    EXPECT_NE(r.output.find("--node-server"), std::string::npos) << c.name << ": " << r.output;
+    EXPECT_NE(r.output.find(c.mention), std::string::npos) << c.name << ": " << r.output;
+    EXPECT_FALSE(fs::exists(out)) << c.name;
+  }
+  std::vector<char> bytes = readBytes(store);
+  bytes.resize(bytes.size() - 7);
+  const fs::path bad = dir / "truncated.lzbtree", out = dir / "out_truncated";
+  writeBytes(bad, bytes);
+  const RunResult r = runLzb(render + " --cache-mb 8 --tree " + bad.string() + " --out " + out.string(), two);
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find(bad.string()), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("truncated"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("rank "), std::string::npos) << "one message for every rank: " << r.output;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 TEST(SampleTreeCli, BuildTreeRefusesBadInputAndWritesNothing) {

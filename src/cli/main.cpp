@@ -25,11 +25,19 @@ std::string joinArgs(int argc, char** argv) {
   return s;
 }
 
+// Whether the command asks for the sample tree's node server, whose threads call MPI besides the
+// main one (MPI_THREAD_MULTIPLE must be asked for at MPI_Init, before the options are parsed).
+bool wantsNodeServer(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]).rfind("--node-server", 0) == 0) return true;
+  return false;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   lzb::preferPassiveOmpWait(argv);
-  lzb::mpi::Session session(&argc, &argv);
+  lzb::mpi::Session session(&argc, &argv, wantsNodeServer(argc, argv));
   const lzb::mpi::Group g = lzb::mpi::Group::world();
   const std::string commandLine = joinArgs(argc, argv);
 

@@ -105,6 +105,7 @@ void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan) {
   plan.options.threads = a.threads > 0 ? a.threads : coresOwned();
   plan.options.seed = a.seed;
   plan.options.quiet = !talk;
+  plan.options.frameGroups = a.frameGroups;
   useThreads(plan.options.threads);
 
   plan.width = a.width ? a.width : plan.scene.width.value_or(640);

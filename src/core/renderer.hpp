@@ -26,6 +26,7 @@ struct RenderOptions {
   int threads = 1;     // per rank, already resolved (> 0)
   uint64_t seed = 1;   // randomness is keyed by (seed, frame, node, sample)
   bool quiet = false;
+  int frameGroups = 1;  // --frame-groups: the ranks cut into groups that render frames apart
 };
 
 // Measurements a method reports per frame (and once for its set-up): stage times in order, the

@@ -8,8 +8,8 @@
 
 namespace lzb::sampletree {
 
-NodeCache::NodeCache(StoreReader& store, uint64_t budgetBytes)
-    : store_(store), budget_(budgetBytes), fileBytesSeen_(store.fileBytesRead()) {
+NodeCache::NodeCache(NodeSource& source, uint64_t budgetBytes)
+    : source_(source), budget_(budgetBytes), fileBytesSeen_(source.fileBytesRead()) {
   loader_ = std::thread(&NodeCache::loaderLoop, this);
 }
 
@@ -110,7 +110,7 @@ void NodeCache::check() {
 CacheCounters NodeCache::takeCounters() {
   std::lock_guard lock(mutex_);
   CacheCounters c = counters_;
-  const uint64_t read = store_.fileBytesRead();
+  const uint64_t read = source_.fileBytesRead();
   c.fileBytesRead = read - fileBytesSeen_;
   fileBytesSeen_ = read;
   counters_ = {};
@@ -124,15 +124,15 @@ uint64_t NodeCache::residentBytes() const {
 
 void NodeCache::loaderLoop() {
   std::unique_lock lock(mutex_);
+  std::vector<uint32_t> batch;
   for (;;) {
-    uint32_t node = 0;
     bool demand = false;
-    if (!nextJob(lock, node, demand)) return;
+    if (!nextBatch(lock, batch, demand)) return;
     lock.unlock();
-    std::unique_ptr<NodePayload> payload;
+    std::vector<NodePayload> payloads;
     std::exception_ptr error;
     try {
-      payload = std::make_unique<NodePayload>(store_.read(node));
+      payloads = source_.readNodes(batch);
     } catch (...) {
       error = std::current_exception();
     }
@@ -143,44 +143,72 @@ void NodeCache::loaderLoop() {
       loaded_.notify_all();
       return;
     }
-    finishLoad(node, std::move(payload), demand);
+    for (size_t i = 0; i < batch.size(); ++i)
+      finishLoad(batch[i], std::make_unique<NodePayload>(std::move(payloads[i])), demand);
     loaded_.notify_all();
   }
 }
 
-// The next node to load, its bytes reserved: demand first, then prefetch into room that older
+// The next nodes to load, their bytes reserved: demand first, then prefetch into room that older
 // frames leave. Waits while there is nothing to do; false when stopping or failed.
-bool NodeCache::nextJob(std::unique_lock<std::mutex>& lock, uint32_t& node, bool& demand) {
+bool NodeCache::nextBatch(std::unique_lock<std::mutex>& lock, std::vector<uint32_t>& batch,
+                          bool& demand) {
+  batch.clear();
   for (;;) {
     if (stop_ || error_) return false;
     if (!demand_.empty()) {
-      node = demand_.front();
-      demand_.pop_front();
       demand = true;
-      const uint64_t bytes = payloadBytes(store_.table().nodes[node]);
-      if (!makeRoom(bytes, true)) {  // acquire() keeps a batch within the budget: a bug
-        error_ = std::make_exception_ptr(std::logic_error(
-            "node cache: no room for node " + std::to_string(node) + " within the budget"));
-        loaded_.notify_all();
-        return false;
-      }
-      used_ += bytes;
+      if (!takeDemand(batch)) return false;
       busy_ = true;
       return true;
     }
-    while (!prefetch_.empty()) {
-      node = prefetch_.front();
-      prefetch_.pop_front();
-      const uint64_t bytes = payloadBytes(store_.table().nodes[node]);
-      if (entries_.count(node) || !makeRoom(bytes, false)) continue;
-      entries_.try_emplace(node);
-      used_ += bytes;
-      busy_ = true;
+    takePrefetch(batch);
+    if (!batch.empty()) {
       demand = false;
+      busy_ = true;
       return true;
     }
     loaded_.notify_all();  // idle: drain() may return
     work_.wait(lock);
+  }
+}
+
+// Moves demanded nodes into `batch` (one message to a node server; the frame waits for all of
+// them anyway). False (and error_ set) when one finds no room: acquire() keeps a batch within the
+// budget, so that is a bug.
+bool NodeCache::takeDemand(std::vector<uint32_t>& batch) {
+  constexpr size_t kMaxNodes = 4096;
+  while (!demand_.empty() && batch.size() < kMaxNodes) {
+    const uint32_t node = demand_.front();
+    demand_.pop_front();
+    const uint64_t bytes = payloadBytes(source_.table().nodes[node]);
+    if (!makeRoom(bytes, true)) {
+      error_ = std::make_exception_ptr(std::logic_error(
+          "node cache: no room for node " + std::to_string(node) + " within the budget"));
+      loaded_.notify_all();
+      return false;
+    }
+    used_ += bytes;
+    batch.push_back(node);
+  }
+  return true;
+}
+
+// Moves a few prefetch nodes that fit into `batch`: few, so that a demand arriving meanwhile
+// waits for at most a short batch.
+void NodeCache::takePrefetch(std::vector<uint32_t>& batch) {
+  constexpr size_t kMaxNodes = 64;
+  constexpr uint64_t kMaxBytes = 256 * 1024;
+  uint64_t taken = 0;
+  while (!prefetch_.empty() && batch.size() < kMaxNodes && taken < kMaxBytes) {
+    const uint32_t node = prefetch_.front();
+    prefetch_.pop_front();
+    const uint64_t bytes = payloadBytes(source_.table().nodes[node]);
+    if (entries_.count(node) || !makeRoom(bytes, false)) continue;
+    entries_.try_emplace(node);
+    used_ += bytes;
+    taken += bytes;
+    batch.push_back(node);
   }
 }
 
@@ -193,7 +221,7 @@ bool NodeCache::makeRoom(uint64_t bytes, bool demand) {
     const auto oldest = lru_.begin();
     if (!demand && std::get<0>(*oldest) >= frame_) return false;
     const uint32_t victim = std::get<2>(*oldest);
-    used_ -= payloadBytes(store_.table().nodes[victim]);
+    used_ -= payloadBytes(source_.table().nodes[victim]);
     entries_.erase(victim);
     lru_.erase(oldest);
     ++counters_.evicted;
@@ -207,7 +235,7 @@ void NodeCache::finishLoad(uint32_t node, std::unique_ptr<NodePayload> payload, 
   e.state = State::kResident;
   ++counters_.nodesLoaded;
   counters_.nodesPrefetched += demand ? 0 : 1;
-  counters_.bytesRead += payloadBytes(store_.table().nodes[node]);
+  counters_.bytesRead += payloadBytes(source_.table().nodes[node]);
   if (e.pins > 0)
     --awaited_;  // the current acquire() waits for it
   else

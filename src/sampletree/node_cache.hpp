@@ -1,6 +1,7 @@
 #pragma once
-// The node cache of section 6.2: node payloads (positions and IDs) loaded from the store on demand
-// by one background loader thread, within a byte budget. A frame acquires the nodes it draws
+// The node cache of section 6.2: node payloads (positions and IDs) loaded from a node source (the
+// store, or a node server on another rank) on demand by one background loader thread, within a
+// byte budget. The loader asks for several nodes at once (one message to a node server). A frame acquires the nodes it draws
 // (the loader loads the missing ones first; the frame waits for them) and may queue nodes to
 // prefetch (loaded while the frame goes on, only into room that older frames' nodes leave).
 // Eviction: the least recently used frame's nodes first; nodes acquired and not yet released are
@@ -18,7 +19,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "src/sampletree/store_reader.hpp"
+#include "src/sampletree/node_source.hpp"
 
 namespace lzb::sampletree {
 
@@ -27,7 +28,7 @@ struct CacheCounters {
   uint64_t nodesLoaded = 0;     // demand and prefetch loads completed
   uint64_t nodesPrefetched = 0;  // of which prefetch
   uint64_t bytesRead = 0;       // the loaded nodes' payload bytes
-  uint64_t fileBytesRead = 0;   // bytes read from the store (whole checked blocks)
+  uint64_t fileBytesRead = 0;   // bytes read from the store (whole checked blocks) on this rank
   uint64_t hits = 0;            // acquired nodes already resident
   uint64_t evicted = 0;
   double waitSeconds = 0.0;     // the frame waiting in acquire()
@@ -35,7 +36,7 @@ struct CacheCounters {
 
 class NodeCache {
  public:
-  NodeCache(StoreReader& store, uint64_t budgetBytes);
+  NodeCache(NodeSource& source, uint64_t budgetBytes);
   ~NodeCache();
   NodeCache(const NodeCache&) = delete;
   NodeCache& operator=(const NodeCache&) = delete;
@@ -73,13 +74,15 @@ class NodeCache {
   using LruKey = std::tuple<uint64_t, uint64_t, uint32_t>;  // (frame, seq, node)
 
   void loaderLoop();
-  bool nextJob(std::unique_lock<std::mutex>& lock, uint32_t& node, bool& demand);
+  bool nextBatch(std::unique_lock<std::mutex>& lock, std::vector<uint32_t>& batch, bool& demand);
+  bool takeDemand(std::vector<uint32_t>& batch);
+  void takePrefetch(std::vector<uint32_t>& batch);
   bool makeRoom(uint64_t bytes, bool demand);
   void finishLoad(uint32_t node, std::unique_ptr<NodePayload> payload, bool demand);
   void unpinToLru(uint32_t node, Entry& e);
   void rethrowLocked();
 
-  StoreReader& store_;
+  NodeSource& source_;
   const uint64_t budget_;
   mutable std::mutex mutex_;
   std::condition_variable work_, loaded_;
@@ -88,7 +91,7 @@ class NodeCache {
   std::deque<uint32_t> demand_, prefetch_;
   uint64_t used_ = 0, frame_ = 0, seq_ = 0;
   uint64_t awaited_ = 0;        // nodes the current acquire() still waits for
-  uint64_t fileBytesSeen_ = 0;  // store_.fileBytesRead() at the last takeCounters()
+  uint64_t fileBytesSeen_ = 0;  // source_.fileBytesRead() at the last takeCounters()
   bool busy_ = false, stop_ = false;
   std::exception_ptr error_;
   CacheCounters counters_;

@@ -3,15 +3,19 @@
 // InputError naming the store at render time, and the cache's counters add up.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cstring>
 #include <filesystem>
+#include <span>
 #include <fstream>
 #include <string>
 #include <vector>
 
 #include "src/core/error.hpp"
 #include "src/core/test_camera.hpp"
+#include "src/sampletree/node_cache.hpp"
 #include "src/sampletree/sampletree_renderer.hpp"
+#include "src/sampletree/store_reader.hpp"
 #include "src/sampletree/store_format.hpp"
 #include "src/sampletree/traversal.hpp"
 #include "src/sampletree/tree_build.hpp"
@@ -144,6 +148,49 @@ TEST(OutOfCore, RankSharesCompositeToTheOneRankImage) {
     compositeNearer(composite, renderFrame(part, camera, WorkShare{rank, 3}).fb);
   }
   EXPECT_TRUE(sameKeys(all.fb, composite));
+}
+
+// A source that counts what the cache asks of it (a node server answers each call with one message).
+class CountingSource : public NodeSource {
+ public:
+  explicit CountingSource(StoreReader& store) : store_(store) {}
+  const SampleTree& table() const override { return store_.table(); }
+  std::vector<NodePayload> readNodes(std::span<const uint32_t> nodes) override {
+    ++calls;
+    asked += nodes.size();
+    return store_.readNodes(nodes);
+  }
+  uint64_t fileBytesRead() const override { return store_.fileBytesRead(); }
+  std::atomic<uint64_t> calls{0}, asked{0};
+
+ private:
+  StoreReader& store_;
+};
+
+// The missing nodes of one acquire reach the source in one call, each once, as the store reads
+// them; resident nodes are not asked for again.
+TEST(OutOfCore, OneAcquireAsksTheSourceOnce) {
+  StoreReader reader(store().string());
+  CountingSource source(reader);
+  NodeCache cache(source, 64 << 20);
+  std::vector<uint32_t> nodes;
+  for (uint32_t n = 0; n < reader.table().nodes.size() && nodes.size() < 300; n += 2)
+    if (reader.table().nodes[n].triangleCount > 0) nodes.push_back(n);
+  ASSERT_EQ(nodes.size(), 300u);
+  cache.beginFrame();
+  const std::vector<const NodePayload*> got = cache.acquire(nodes);
+  EXPECT_EQ(source.calls.load(), 1u);
+  EXPECT_EQ(source.asked.load(), nodes.size());
+  for (size_t k = 0; k < nodes.size(); k += 37) {
+    const NodePayload want = reader.read(nodes[k]);
+    EXPECT_EQ(got[k]->ids, want.ids) << "node " << nodes[k];
+    EXPECT_EQ(got[k]->positions, want.positions) << "node " << nodes[k];
+  }
+  cache.release(nodes);
+  cache.acquire(nodes);
+  cache.release(nodes);
+  EXPECT_EQ(source.calls.load(), 1u);
+  EXPECT_EQ(cache.takeCounters().hits, nodes.size());
 }
 
 TEST(OutOfCore, CountersAddUpAndASecondFrameLoadsNothing) {

@@ -6,6 +6,7 @@
 
 #include "src/core/error.hpp"
 #include "src/core/system.hpp"
+#include "src/sampletree/node_link.hpp"
 #include "src/sampletree/sampletree_renderer.hpp"
 #include "src/sampletree/tree_build.hpp"
 
@@ -53,6 +54,9 @@ class SampleTreeMethod : public Method {
                    "sampletree (with --tree and --cache-mb): levels below the nodes where the "
                    "traversal stopped that a background thread prefetches (0: none)")
         ->capture_default_str();
+    app.add_flag("--node-server", st_.nodeServer,
+                 "sampletree (with --tree, --cache-mb and >= 2 MPI ranks): the last rank reads the "
+                 "store and serves node payloads to the others, which render (section 6.1)");
     app.add_option("--leaf-triangles", st_.leafTriangles,
                    "sampletree (in-memory build): octree cells with more triangles are split")
         ->capture_default_str();
@@ -67,6 +71,7 @@ class SampleTreeMethod : public Method {
     if (!st_.treePath.empty())
       require(std::filesystem::is_regular_file(st_.treePath), "--tree",
               st_.treePath + " is not a file");
+    validateNodeServer();  // first: its message says what --node-server needs
     validateCache();
   }
   void validateCache() const {
@@ -80,6 +85,20 @@ class SampleTreeMethod : public Method {
     // A budget the process cannot hold is refused now, not when the cache fills.
     requireMemory(uint64_t(st_.cacheMb * 1024.0 * 1024.0), "--cache-mb", "a node cache");
   }
+  void validateNodeServer() const {
+    if (!st_.nodeServer) return;
+    require(!st_.treePath.empty(), "--node-server",
+            "serves the nodes of a tree store: it needs --tree (a store written by lzb build-tree)");
+    require(st_.cacheMb > 0.0, "--node-server",
+            "the render ranks keep the served nodes in a node cache: it needs --cache-mb > 0");
+    const int ranks = sampletree::worldRanks();
+    require(ranks >= 2, "--node-server",
+            "one rank serves the nodes and the others render: it needs at least 2 MPI ranks "
+            "(mpiexec -n 2 or more), got " + std::to_string(ranks));
+    // The node cache's loader thread asks the server while the frame thread composites.
+    require(sampletree::threadsMayCallMpi(), "--node-server",
+            "needs an MPI library that provides MPI_THREAD_MULTIPLE (this one does not)");
+  }
   // runs/tradeoff/README.md "Presets".
   std::vector<PresetOption> preset(Quality q) const override {
     return pickPreset(q, {{"splat", "2"}, {"c", "0"}}, {{"splat", "1"}, {"c", "5"}},
@@ -92,7 +111,8 @@ class SampleTreeMethod : public Method {
             {"stop_draw", stopDraw_},
             {"leaf_triangles", st_.leafTriangles},
             {"cache_mb", st_.cacheMb},
-            {"cache_levels", st_.cacheLevels}};
+            {"cache_levels", st_.cacheLevels},
+            {"node_server", st_.nodeServer}};
   }
   std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const override {
     return std::make_unique<sampletree::SampleTreeRenderer>(scene, options, st_);

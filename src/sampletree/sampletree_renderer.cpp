@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,13 @@ std::vector<uint32_t> prefetchOfShare(const SampleTree& tree, const Traversal& w
   return belowStops(tree, mine, levels);
 }
 
+// A render rank's share when the link's last rank serves nodes: rank r of the size - 1 others.
+WorkShare renderShare(const WorkShare& share, const NodeLink& link) {
+  if (share.size != link.group().size || share.rank != link.group().rank)
+    throw std::logic_error("sampletree: the node server's ranks differ from the frame's");
+  return WorkShare{share.rank, share.size - 1};
+}
+
 }  // namespace
 
 SampleTreeRenderer::SampleTreeRenderer(const Scene& scene, const RenderOptions& options,
@@ -57,6 +65,9 @@ SampleTreeRenderer::SampleTreeRenderer(const Scene& scene, const RenderOptions& 
   if (st.treePath.empty()) {
     tree_ = buildTree(scene, TreeParams{st.c, options.seed, st.leafTriangles}, options.threads);
     setup_.addStage("build_tree", clock.lap());
+  } else if (st.nodeServer) {
+    openNodeServer();
+    setup_.addStage("read_node_table", clock.lap());
   } else if (st.cacheMb > 0.0) {
     openStore();
     setup_.addStage("read_node_table", clock.lap());
@@ -64,7 +75,7 @@ SampleTreeRenderer::SampleTreeRenderer(const Scene& scene, const RenderOptions& 
     tree_ = readTree(st.treePath);
     setup_.addStage("read_tree", clock.lap());
   }
-  if (!store_) treeTriangles_ = tree_.triangles(), treeBytes_ = storeBytes(tree_);
+  if (!source_) treeTriangles_ = tree_.triangles(), treeBytes_ = storeBytes(tree_);
   if (!st.treePath.empty())
     require(tree().sceneTriangles == scene.expandedTriangles(), st.treePath + " (sample tree store)",
             "built from a scene of " + std::to_string(tree().sceneTriangles) +
@@ -81,30 +92,67 @@ SampleTreeRenderer::SampleTreeRenderer(const Scene& scene, const RenderOptions& 
 // Out of core: the node table resident, a cache within --cache-mb for the triangles.
 void SampleTreeRenderer::openStore() {
   store_ = std::make_unique<StoreReader>(st_.treePath);
+  source_ = store_.get();
   treeTriangles_ = store_->triangles();
   treeBytes_ = store_->fileBytes();
-  const uint64_t budget = uint64_t(st_.cacheMb * 1024.0 * 1024.0);
+  checkBudget();
+  cache_ = std::make_unique<NodeCache>(*store_, cacheBudget());
+}
+
+// With a node server: the last rank opens the store and serves; the others receive its node table
+// and load through it. Every check below sees the same table on every rank, so a refusal is
+// agreed on alike.
+void SampleTreeRenderer::openNodeServer() {
+  require(options_.frameGroups == 1, "--node-server",
+          "one rank serves the nodes to the ranks of one frame; it cannot be combined with "
+          "--frame-groups " + std::to_string(options_.frameGroups));
+  link_ = std::make_unique<NodeLink>();
+  if (link_->serving()) {
+    server_ = std::make_unique<NodeServer>(*link_, st_.treePath);
+    source_ = &server_->store();
+    treeTriangles_ = server_->store().triangles();
+    treeBytes_ = server_->store().fileBytes();
+  } else {
+    client_ = std::make_unique<NodeClient>(*link_);
+    source_ = client_.get();
+    treeTriangles_ = client_->triangles();
+    treeBytes_ = client_->fileBytes();
+  }
+  checkBudget();
+  if (client_) cache_ = std::make_unique<NodeCache>(*client_, cacheBudget());
+}
+
+uint64_t SampleTreeRenderer::cacheBudget() const { return uint64_t(st_.cacheMb * 1024.0 * 1024.0); }
+
+// Streaming needs each node whole in the cache: a smaller budget can never draw the largest.
+void SampleTreeRenderer::checkBudget() {
+  const uint64_t budget = cacheBudget();
   uint64_t largest = 0;
-  for (const TreeNode& n : store_->table().nodes) largest = std::max(largest, payloadBytes(n));
-  // Streaming needs each node whole in the cache: a smaller budget can never draw the largest.
+  for (const TreeNode& n : source_->table().nodes) largest = std::max(largest, payloadBytes(n));
   require(largest <= budget, "--cache-mb",
           "a node cache of " + std::to_string(budget) + " bytes cannot hold the largest node of " +
               st_.treePath + " (" + std::to_string(largest) + " bytes of triangles; at least " +
               std::to_string(std::ceil(double(largest) / 1048576.0 * 1e6) / 1e6) + " MiB)");
-  cache_ = std::make_unique<NodeCache>(*store_, budget);
   setup_.setShared("cache_budget_bytes", double(budget));
   setup_.setShared("largest_node_bytes", double(largest));
 }
 
 std::string SampleTreeRenderer::decomposition() const {
-  return "the tree traversal on every rank; the visited nodes, in preorder, dealt to ranks as "
-         "contiguous runs of equal cost (a node's triangles, 1 per splat); each rank draws its "
-         "nodes' triangles (native z-buffer) and splats into one key buffer; depth compositing "
-         "by (depth, id)";
+  const std::string split =
+      "the tree traversal on every rank; the visited nodes, in preorder, dealt to ranks as "
+      "contiguous runs of equal cost (a node's triangles, 1 per splat); each rank draws its "
+      "nodes' triangles (native z-buffer) and splats into one key buffer; depth compositing "
+      "by (depth, id)";
+  if (!link_) return split;
+  return "node server: the last rank reads the store and serves node payloads to the others, "
+         "which render: " + split;
 }
 
-void SampleTreeRenderer::render(const Camera& camera, int /*frame*/, const WorkShare& share,
+void SampleTreeRenderer::render(const Camera& camera, int frame, const WorkShare& rankShare,
                                 Framebuffer& fb, FrameStats& stats) {
+  if (server_) return serveFrame(stats);
+  // With a node server the render ranks split the frame among themselves.
+  const WorkShare share = link_ ? renderShare(rankShare, *link_) : rankShare;
   Stopwatch clock;
   const SampleTree& tree = this->tree();
   if (cache_) cache_->beginFrame();
@@ -167,6 +215,22 @@ void SampleTreeRenderer::render(const Camera& camera, int /*frame*/, const WorkS
   stats.addCount("splats_drawn", double(splats.size()));
   stats.addCount("splats_in_image", double(splatted));
   if (cache_) reportCache(stats);
+  if (client_) {
+    stats.addCount("remote_wait_seconds", client_->takeWaitSeconds());
+    client_->frameDrawn(frame);
+  }
+}
+
+// The server's frame: it draws nothing and waits until every render rank has drawn its share,
+// then reports what it served meanwhile.
+void SampleTreeRenderer::serveFrame(FrameStats& stats) {
+  Stopwatch clock;
+  const ServerCounters c = server_->awaitFrame();
+  stats.addStage("serve", clock.lap());
+  stats.addCount("served_requests", double(c.requests));
+  stats.addCount("served_nodes", double(c.nodes));
+  stats.addCount("served_bytes", double(c.bytes));
+  stats.addCount("file_bytes_read", double(c.fileBytesRead));
 }
 
 // Per rank, summed in the report: what the cache did since the last frame's report (prefetch

@@ -5,13 +5,18 @@
 // the native z-buffer and its splats with the splatting core into one key buffer, so compositing
 // the ranks by (depth, ID) gives the 1-rank image for any rank or thread count. Out of core
 // (a store and cacheMb > 0) only the node table is resident: the drawn nodes' triangles come
-// from the node cache (node_cache.hpp, paged_draw.hpp), the same image as in core.
+// from the node cache (node_cache.hpp, paged_draw.hpp), the same image as in core. With a node
+// server (nodeServer, >= 2 ranks) the last rank serves the payloads (node_server.hpp) and draws
+// nothing; the others split the frame among themselves as above and load through it.
 #include <memory>
 #include <string>
 
 #include "src/core/depth_key.hpp"
 #include "src/core/renderer.hpp"
 #include "src/sampletree/node_cache.hpp"
+#include "src/sampletree/node_client.hpp"
+#include "src/sampletree/node_link.hpp"
+#include "src/sampletree/node_server.hpp"
 #include "src/sampletree/paged_draw.hpp"
 #include "src/sampletree/sample_tree.hpp"
 #include "src/sampletree/store_reader.hpp"
@@ -28,6 +33,7 @@ struct SampleTreeOptions {
   StopDraw stopDraw = StopDraw::kSplat;  // what a stopped node draws
   double cacheMb = 0.0;  // with treePath: > 0 renders out of core with a node cache this big
   int cacheLevels = 1;   // out of core: levels below the stops prefetched (0: none)
+  bool nodeServer = false;  // out of core: the last rank serves the nodes to the others
 };
 
 class SampleTreeRenderer : public Renderer {
@@ -41,12 +47,16 @@ class SampleTreeRenderer : public Renderer {
               FrameStats& stats) override;
   FrameStats setupStats() const override { return setup_; }
   // The tree; out of core its nodes only (no triangles).
-  const SampleTree& tree() const { return store_ ? store_->table() : tree_; }
+  const SampleTree& tree() const { return source_ ? source_->table() : tree_; }
   // Out of core: the node cache (tests wait for its prefetch); null in core.
   NodeCache* cache() { return cache_.get(); }
 
  private:
   void openStore();
+  void openNodeServer();
+  uint64_t cacheBudget() const;
+  void checkBudget();
+  void serveFrame(FrameStats& stats);
   void reportCache(FrameStats& stats);
 
   const Scene& scene_;
@@ -55,7 +65,11 @@ class SampleTreeRenderer : public Renderer {
   SampleTree tree_;  // in core
   uint64_t treeTriangles_ = 0, treeBytes_ = 0;
   std::unique_ptr<StoreReader> store_;  // out of core
-  std::unique_ptr<NodeCache> cache_;    // after store_: it stops before the store closes
+  std::unique_ptr<NodeLink> link_;      // with a node server: every rank
+  std::unique_ptr<NodeServer> server_;  // the serving rank
+  std::unique_ptr<NodeClient> client_;  // the render ranks
+  const NodeSource* source_ = nullptr;  // out of core: the one of the above with the node table
+  std::unique_ptr<NodeCache> cache_;    // after the sources: it stops before they close
   SoupStaging staging_;
   FrameStats setup_;
   NativeRasterizer raster_;

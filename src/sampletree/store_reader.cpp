@@ -54,6 +54,13 @@ NodePayload StoreReader::read(uint32_t index) {
   return p;
 }
 
+std::vector<NodePayload> StoreReader::readNodes(std::span<const uint32_t> nodes) {
+  std::vector<NodePayload> out;
+  out.reserve(nodes.size());
+  for (uint32_t n : nodes) out.push_back(read(n));
+  return out;
+}
+
 void StoreReader::readPayload(uint64_t offset, uint64_t n, void* out) {
   auto* dst = static_cast<char*>(out);
   while (n > 0) {

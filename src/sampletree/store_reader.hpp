@@ -4,44 +4,34 @@
 // checking the CRC of every 64 KiB block they touch. Any fault is an InputError naming the store.
 #include <atomic>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
-#include <glm/glm.hpp>
-
+#include "src/sampletree/node_source.hpp"
 #include "src/sampletree/sample_tree.hpp"
 #include "src/sampletree/store_format.hpp"
 
 namespace lzb::sampletree {
 
-// What rendering needs of a node's triangles (colour is shaded from the IDs).
-struct NodePayload {
-  std::vector<glm::vec3> positions;  // 3 per triangle
-  std::vector<uint64_t> ids;
-};
-
-// Bytes of a node's payload as loaded: positions and IDs.
-inline uint64_t payloadBytes(const TreeNode& n) {
-  return uint64_t(n.triangleCount) * (format::kPositionBytes + format::kIdBytes);
-}
-
-class StoreReader {
+class StoreReader : public NodeSource {
  public:
   explicit StoreReader(const std::string& path);
-  ~StoreReader();
+  ~StoreReader() override;
   StoreReader(const StoreReader&) = delete;
   StoreReader& operator=(const StoreReader&) = delete;
 
   // The tree without triangles: parameters, root cube and every node.
-  const SampleTree& table() const { return table_; }
+  const SampleTree& table() const override { return table_; }
   uint64_t triangles() const { return header_.triangles; }
   uint64_t fileBytes() const { return fileBytes_; }
   const std::string& where() const { return where_; }
 
   // Node `index`'s positions and IDs. Not thread-safe: one loader calls it.
   NodePayload read(uint32_t index);
+  std::vector<NodePayload> readNodes(std::span<const uint32_t> nodes) override;
   // Bytes read from the file so far (whole blocks, each once per miss of the block memo).
-  uint64_t fileBytesRead() const { return fileBytesRead_.load(); }
+  uint64_t fileBytesRead() const override { return fileBytesRead_.load(); }
 
  private:
   void readPayload(uint64_t offset, uint64_t n, void* out);

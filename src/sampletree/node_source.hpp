@@ -1,0 +1,38 @@
+#pragma once
+// Where the node cache gets node payloads from: the store on this rank's disk (StoreReader) or a
+// node server on another rank (NodeClient). Both give the node table (resident) and read nodes'
+// triangles on request, from the cache's one loader thread.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "src/sampletree/sample_tree.hpp"
+#include "src/sampletree/store_format.hpp"
+
+namespace lzb::sampletree {
+
+// What rendering needs of a node's triangles (colour is shaded from the IDs).
+struct NodePayload {
+  std::vector<glm::vec3> positions;  // 3 per triangle
+  std::vector<uint64_t> ids;
+};
+
+// Bytes of a node's payload as loaded: positions and IDs.
+inline uint64_t payloadBytes(const TreeNode& n) {
+  return uint64_t(n.triangleCount) * (format::kPositionBytes + format::kIdBytes);
+}
+
+class NodeSource {
+ public:
+  virtual ~NodeSource() = default;
+  // The tree without triangles: parameters, root cube and every node.
+  virtual const SampleTree& table() const = 0;
+  // The payloads of `nodes`, in their order. Not thread-safe: one loader calls it.
+  virtual std::vector<NodePayload> readNodes(std::span<const uint32_t> nodes) = 0;
+  // Bytes this rank read from a store file so far (0 when another rank reads them).
+  virtual uint64_t fileBytesRead() const = 0;
+};
+
+}  // namespace lzb::sampletree
