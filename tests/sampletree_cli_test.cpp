@@ -66,6 +66,90 @@ TEST(SampleTreeCli, StoredTreeRendersLikeTheTreeBuiltInMemory) {
   EXPECT_EQ(rep["setup"]["counts"]["tree_seed"].get<double>(), 4.0) << "the store's seed, not --seed";
 }
 
+// Out of core (--mem-mb, buckets of ~6,000 triangles on 2 threads): a loaded scene streamed and a
+// generator streamed without loading write the in-memory build's store byte for byte, and leave
+// no scratch files.
+TEST(SampleTreeCli, OutOfCoreBuildWritesTheInMemoryStore) {
+  for (const std::string& scene : {kScene, std::string("'builtin:landscape?objects=800'")}) {
+    const fs::path dir = freshDir("sampletree_external");
+    const RunResult a = runLzb("build-tree " + scene + " --threads 2 --quiet --out " +
+                               (dir / "memory.lzbtree").string());
+    ASSERT_EQ(a.status, 0) << a.output;
+    const RunResult b = runLzb("build-tree " + scene + " --threads 2 --mem-mb 4 --out " +
+                               (dir / "external.lzbtree").string());
+    ASSERT_EQ(b.status, 0) << b.output;
+    EXPECT_NE(b.output.find("built out of core"), std::string::npos) << b.output;
+    EXPECT_EQ(b.output.find(" 1 buckets"), std::string::npos) << "one bucket: nothing split\n" << b.output;
+    EXPECT_EQ(readBytes(dir / "external.lzbtree"), readBytes(dir / "memory.lzbtree")) << scene;
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2) << scene;
+  }
+}
+
+// A binary PLY file (the bunny as `lzb export` writes it) is streamed by --mem-mb, not loaded,
+// and gives the store of the file loaded whole by the in-memory build; a truncated file and one
+// with a vertex index out of range are refused naming the file, nothing written.
+TEST(SampleTreeCli, OutOfCoreBuildStreamsAPlyFile) {
+  if (bunny().empty()) GTEST_SKIP() << "no test meshes (scripts/fetch-test-meshes.sh)";
+  const fs::path dir = freshDir("sampletree_ply");
+  const fs::path ply = dir / "bunny.ply";
+  ASSERT_EQ(runLzb("export " + bunny() + " " + ply.string() + " --quiet").status, 0);
+  const RunResult a = runLzb("build-tree " + ply.string() + " --threads 2 --quiet --out " +
+                             (dir / "memory.lzbtree").string());
+  ASSERT_EQ(a.status, 0) << a.output;
+  const RunResult b = runLzb("build-tree " + ply.string() + " --threads 2 --mem-mb 4 --out " +
+                             (dir / "external.lzbtree").string());
+  ASSERT_EQ(b.status, 0) << b.output;
+  EXPECT_NE(b.output.find("built out of core"), std::string::npos) << b.output;
+  EXPECT_EQ(b.output.find("not streamed"), std::string::npos) << b.output;
+  EXPECT_EQ(b.output.find(" 1 buckets"), std::string::npos) << "one bucket: nothing split\n"
+                                                            << b.output;
+  EXPECT_EQ(readBytes(dir / "external.lzbtree"), readBytes(dir / "memory.lzbtree"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 3);
+
+  std::vector<char> bytes = readBytes(ply);
+  const std::string text(bytes.begin(), bytes.end());
+  const size_t data = text.find("end_header\n") + 11;
+  const size_t faces = std::stoul(text.substr(text.find("element vertex ") + 15)) * 12 + data;
+  std::vector<char> range = bytes;
+  const int32_t far = 1 << 30;
+  std::memcpy(range.data() + faces + 1 + 4, &far, 4);  // face 0's second index
+  bytes.resize(bytes.size() - 7);
+  const fs::path bad = dir / "bad";
+  fs::create_directories(bad);
+  writeBytes(bad / "cut.ply", bytes);
+  writeBytes(bad / "range.ply", range);
+  for (const char* name : {"cut.ply", "range.ply"}) {
+    const fs::path file = bad / name;
+    const RunResult r = runLzb("build-tree " + file.string() + " --mem-mb 4 --quiet --out " +
+                               (bad / "tree.lzbtree").string());
+    EXPECT_EQ(r.status, 2) << name << ": " << r.output;
+    EXPECT_NE(r.output.find(file.string() + ": " +
+                            (name[0] == 'c' ? "truncated" : "malformed: face 0 uses vertex")),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(std::distance(fs::directory_iterator(bad), fs::directory_iterator()), 2) << name;
+  }
+}
+
+// A PLY file the streaming reader leaves to the loader (ASCII) is loaded whole, with a note, and
+// still gives the in-memory store.
+TEST(SampleTreeCli, OutOfCoreBuildLoadsAnAsciiPly) {
+  const fs::path dir = freshDir("sampletree_ply_ascii");
+  const fs::path ply = dir / "quad.ply";
+  std::ofstream(ply)
+      << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+         "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+         "end_header\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+  const RunResult a =
+      runLzb("build-tree " + ply.string() + " --quiet --out " + (dir / "memory.lzbtree").string());
+  ASSERT_EQ(a.status, 0) << a.output;
+  const RunResult b = runLzb("build-tree " + ply.string() + " --mem-mb 4 --out " +
+                             (dir / "external.lzbtree").string());
+  ASSERT_EQ(b.status, 0) << b.output;
+  EXPECT_NE(b.output.find("not streamed (an ASCII PLY)"), std::string::npos) << b.output;
+  EXPECT_EQ(readBytes(dir / "external.lzbtree"), readBytes(dir / "memory.lzbtree"));
+}
+
 // Damage of every kind: exit status 2, the store named, no output folder.
 TEST(SampleTreeCli, DamagedStoresAreRefused) {
   const fs::path dir = freshDir("sampletree_damaged");
@@ -234,6 +318,9 @@ TEST(SampleTreeCli, BuildTreeRefusesBadInputAndWritesNothing) {
   // The last: 2^25 expanded triangles, above the in-core limit of this milestone.
   for (const std::string& args : {std::string("build-tree builtin:teapot"), "build-tree " + kScene + " --c -1",
                                   "build-tree " + kScene + " --leaf-triangles 0",
+                                  "build-tree " + kScene + " --mem-mb 0.001",
+                                  "build-tree " + kScene + " --mem-mb -5",
+                                  std::string("build-tree 'builtin:landscape?objects=-1' --mem-mb 64"),
                                   std::string("build-tree 'builtin:chessboard?n=4096'")}) {
     const RunResult r = runLzb(args + " --out " + store.string() + " --quiet");
     EXPECT_EQ(r.status, 2) << args << ": " << r.output;

@@ -1,13 +1,22 @@
 #include "src/cli/build_tree_command.hpp"
 
+#include <algorithm>
+#include <cctype>
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
 
 #include "src/core/error.hpp"
 #include "src/core/system.hpp"
 #include "src/core/timer.hpp"
+#include "src/sampletree/external_build.hpp"
 #include "src/sampletree/tree_build.hpp"
 #include "src/sampletree/tree_store.hpp"
+#include "src/scene/builtin.hpp"
 #include "src/scene/load.hpp"
+#include "src/scene/ply_stream.hpp"
 
 namespace lzb {
 
@@ -21,16 +30,110 @@ void addBuildTreeOptions(CLI::App& c, BuildTreeArgs& a) {
       ->capture_default_str();
   c.add_option("--threads,-t", a.threads, "threads (0: the cores this process owns)")
       ->capture_default_str();
+  c.add_option("--mem-mb", a.memMb,
+               "build out of core within this memory budget in MiB (section 5.1: the scene "
+               "streamed, cells spilled to scratch files beside --out); 0: in memory")
+      ->capture_default_str();
   c.add_flag("--quiet,-q", a.quiet, "no progress lines");
 }
+
+namespace {
+
+constexpr double kMaxMemMb = 1048576.0;  // 1 TiB
+
+// The scene as a stream: a streaming generator regenerates it on every pass and a binary PLY
+// file is read again on every pass, neither held whole; any other scene is loaded and its
+// expanded triangles streamed.
+struct SceneInput {
+  std::optional<Scene> scene;
+  std::unique_ptr<PlyMeshStream> ply;
+  std::unique_ptr<sampletree::TriangleStream> stream;
+};
+
+bool isPly(const std::string& spec) {
+  std::string ext = std::filesystem::path(spec).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return ext == ".ply";
+}
+
+// The PLY file streamed, or false (with a note why) when it is left to the loader.
+bool openPlyStream(const std::string& spec, bool quiet, SceneInput& in) {
+  std::string why;
+  in.ply = PlyMeshStream::open(spec, why);
+  if (!in.ply) {
+    if (!quiet)
+      std::fprintf(stderr, "note: %s: loaded whole, not streamed (%s)\n", spec.c_str(),
+                   why.c_str());
+    return false;
+  }
+  const LoadStats& s = in.ply->stats();
+  if (!quiet && (s.degenerate > 0 || s.nonFinite > 0))
+    std::fprintf(stderr,
+                 "warning: %s: dropped %llu degenerate and %llu non-finite triangles (%llu kept)\n",
+                 spec.c_str(), (unsigned long long)s.degenerate, (unsigned long long)s.nonFinite,
+                 (unsigned long long)s.loaded);
+  const PlyMeshStream& ply = *in.ply;
+  in.stream = std::make_unique<sampletree::MeshChunkStream>(
+      spec, ply.triangles(),
+      [&ply](const std::function<void(const Mesh&)>& out) { ply.forEachChunk(out); },
+      sampletree::MeshChunkStream::Kind::kFile, ply.placement());
+  return true;
+}
+
+SceneInput openSceneStream(const std::string& spec, bool quiet) {
+  SceneInput in;
+  const std::string prefix = "builtin:";
+  if (spec.rfind(prefix, 0) == 0)
+    if (auto chunks = builtinChunks(spec.substr(prefix.size()))) {
+      in.stream = std::make_unique<sampletree::MeshChunkStream>(
+          spec, chunks->triangles, std::move(chunks->generate),
+          sampletree::MeshChunkStream::Kind::kGenerator);
+      return in;
+    }
+  if (isPly(spec) && openPlyStream(spec, quiet, in)) return in;
+  in.scene = loadScene(spec, quiet);
+  in.stream = std::make_unique<sampletree::SceneStream>(*in.scene);
+  return in;
+}
+
+int runExternalBuild(const BuildTreeArgs& a, const mpi::Group& g,
+                     const sampletree::TreeParams& params, int threads) {
+  require(std::isfinite(a.memMb) && a.memMb > 0.0 && a.memMb <= kMaxMemMb, "--mem-mb",
+          "must be a budget in MiB up to 2^20, got " + std::to_string(a.memMb));
+  const uint64_t memBytes = uint64_t(a.memMb * 1024.0 * 1024.0);
+  requireMemory(memBytes, "--mem-mb", "the external build");
+  sampletree::ExternalOptions options = sampletree::optionsForMemory(memBytes, params, threads);
+  if (!g.root()) return 0;  // one rank builds: the passes are bound by the input and the disk
+  options.progress = !a.quiet;
+  options.scratchDir = std::filesystem::absolute(a.out).parent_path();
+  const SceneInput in = openSceneStream(a.scene, a.quiet);
+  Stopwatch clock;
+  const sampletree::ExternalReport r =
+      sampletree::buildTreeExternal(*in.stream, params, options, threads, a.out);
+  if (!a.quiet)
+    std::printf("lzb: sample tree of %llu triangles in %llu nodes built out of core in %.1f s "
+                "(input %.1f s in %d passes, buckets %.1f s, store %.1f s; %llu buckets of at "
+                "most %llu triangles, %llu top cells, %llu scratch bytes), %llu bytes written to "
+                "%s\n",
+                (unsigned long long)r.triangles, (unsigned long long)r.nodes, clock.lap(),
+                r.inputSeconds, r.streamPasses, r.bucketSeconds, r.storeSeconds,
+                (unsigned long long)r.buckets,
+                (unsigned long long)r.largestBucket, (unsigned long long)r.topCells,
+                (unsigned long long)r.spillBytes, (unsigned long long)r.storeBytes, a.out.c_str());
+  return 0;
+}
+
+}  // namespace
 
 int runBuildTree(const BuildTreeArgs& a, const mpi::Group& g) {
   require(a.threads >= 0 && a.threads <= 1024, "--threads", "must be in [0, 1024]");
   const sampletree::TreeParams params{a.c, a.seed, a.leafTriangles};
   sampletree::validateParams(params);
+  const int threads = a.threads > 0 ? a.threads : coresOwned();
+  if (a.memMb != 0.0) return runExternalBuild(a, g, params, threads);
   const Scene scene = loadScene(a.scene, a.quiet || !g.root());
   Stopwatch clock;
-  const int threads = a.threads > 0 ? a.threads : coresOwned();
   const sampletree::SampleTree tree = sampletree::buildTree(scene, params, threads);
   const double buildSeconds = clock.lap();
   if (!g.root()) return 0;

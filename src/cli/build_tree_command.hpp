@@ -1,7 +1,9 @@
 #pragma once
-// `lzb build-tree SCENE --out PATH`: builds the randomized sample tree of a scene in memory and
-// writes it as a tree store (src/sampletree/tree_store.hpp) for `lzb render --method sampletree
-// --tree PATH`. Bad input (scene, options, too many triangles) writes nothing.
+// `lzb build-tree SCENE --out PATH [--mem-mb M]`: builds the randomized sample tree of a scene, in
+// memory or (with --mem-mb) out of core within M MiB, streaming the scene (src/sampletree/
+// external_build.hpp), and writes it as a tree store (src/sampletree/tree_store.hpp) for
+// `lzb render --method sampletree --tree PATH`. Bad input (scene, options, too many triangles)
+// writes nothing.
 #include <cstdint>
 #include <string>
 
@@ -17,6 +19,7 @@ struct BuildTreeArgs {
   uint64_t seed = 1;
   uint32_t leafTriangles = 32;
   int threads = 0;
+  double memMb = 0.0;  // > 0: out of core within this budget
   bool quiet = false;
 };
 

@@ -15,20 +15,9 @@ struct Builder {
   uint32_t leafTriangles;
   CellOctree& tree;
 
-  // Which child of a cell centred at `centre` takes triangle t; -1 when t stays in the cell.
   int childOf(uint32_t t, const glm::dvec3& centre, double childSize) const {
-    const glm::dvec3 a(in.vertex(t, 0)), b(in.vertex(t, 1)), c(in.vertex(t, 2));
-    const glm::dvec3 centroid = (a + b + c) / 3.0;
-    const int o = int(centroid.x >= centre.x) | int(centroid.y >= centre.y) << 1 |
-                  int(centroid.z >= centre.z) << 2;
-    const glm::dvec3 childCentre =
-        centre + 0.5 * childSize * glm::dvec3(o & 1 ? 1 : -1, o & 2 ? 1 : -1, o & 4 ? 1 : -1);
-    const double r2 = 0.75 * childSize * childSize;  // (half diagonal)^2
-    for (const glm::dvec3& v : {a, b, c}) {
-      const glm::dvec3 d = v - childCentre;
-      if (glm::dot(d, d) > r2) return -1;
-    }
-    return o;
+    return childOctant(glm::dvec3(in.vertex(t, 0)), glm::dvec3(in.vertex(t, 1)),
+                       glm::dvec3(in.vertex(t, 2)), centre, childSize);
   }
 
   // Appends the cell (level, cell) holding `tris` and its subtree; returns its index.
@@ -69,6 +58,21 @@ struct Builder {
 
 }  // namespace
 
+int childOctant(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                const glm::dvec3& centre, double childSize) {
+  const glm::dvec3 centroid = (a + b + c) / 3.0;
+  const int o = int(centroid.x >= centre.x) | int(centroid.y >= centre.y) << 1 |
+                int(centroid.z >= centre.z) << 2;
+  const glm::dvec3 childCentre =
+      centre + 0.5 * childSize * glm::dvec3(o & 1 ? 1 : -1, o & 2 ? 1 : -1, o & 4 ? 1 : -1);
+  const double r2 = 0.75 * childSize * childSize;  // (half diagonal)^2
+  for (const glm::dvec3& v : {a, b, c}) {
+    const glm::dvec3 d = v - childCentre;
+    if (glm::dot(d, d) > r2) return -1;
+  }
+  return o;
+}
+
 bool BuildNode::leaf() const {
   return std::all_of(child.begin(), child.end(), [](int32_t c) { return c == kNoChild; });
 }
@@ -78,20 +82,28 @@ glm::dvec3 CellOctree::cellCentre(const BuildNode& n) const {
   return origin + s * (glm::dvec3(n.cell[0], n.cell[1], n.cell[2]) + 0.5);
 }
 
+void fitRootCube(CellOctree& tree, const Bounds& b) {
+  const glm::dvec3 e = b.extent();
+  tree.size = std::max({e.x, e.y, e.z}) * (1.0 + 1e-6) + 1e-30;
+  tree.origin = b.center() - glm::dvec3(0.5 * tree.size);
+}
+
+void buildCellSubtree(CellOctree& frame, const TriangleInput& in, const std::vector<double>& areas,
+                      uint32_t leafTriangles, uint8_t level, const uint32_t (&cell)[3]) {
+  std::vector<uint32_t> all(in.size());
+  for (uint32_t t = 0; t < all.size(); ++t) all[t] = t;
+  Builder{in, areas, leafTriangles, frame}.build(level, cell, std::move(all));
+}
+
 CellOctree buildCellOctree(const TriangleInput& in, const std::vector<double>& areas,
                            uint32_t leafTriangles) {
   CellOctree tree;
   if (in.size() == 0) return tree;
   Bounds b;
   for (const glm::vec3& p : in.positions) b.extend(glm::dvec3(p));
-  const glm::dvec3 e = b.extent();
-  // A cube a hair larger than the bounds, so every vertex is strictly inside.
-  tree.size = std::max({e.x, e.y, e.z}) * (1.0 + 1e-6) + 1e-30;
-  tree.origin = b.center() - glm::dvec3(0.5 * tree.size);
-  std::vector<uint32_t> all(in.size());
-  for (uint32_t t = 0; t < all.size(); ++t) all[t] = t;
+  fitRootCube(tree, b);
   const uint32_t root[3] = {0, 0, 0};
-  Builder{in, areas, leafTriangles, tree}.build(0, root, std::move(all));
+  buildCellSubtree(tree, in, areas, leafTriangles, 0, root);
   return tree;
 }
 

@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "src/core/bounds.hpp"
 #include "src/sampletree/tree_input.hpp"
 
 namespace lzb::sampletree {
@@ -36,9 +37,24 @@ struct CellOctree {
   glm::dvec3 cellCentre(const BuildNode& n) const;
 };
 
+// The root cube around bounds `b` (of the triangles' float vertices): a hair larger than the
+// bounds, so every vertex is strictly inside. Sets origin and size.
+void fitRootCube(CellOctree& tree, const Bounds& b);
+
+// The octant of a cell centred at `centre` whose child (side childSize) takes the triangle
+// (a, b, c): the child holding its centroid, when all three vertices lie in that child's bounding
+// sphere; -1 when the triangle stays in the cell. The one rule of the in-memory and the external
+// construction.
+int childOctant(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                const glm::dvec3& centre, double childSize);
+
 // The root cube around every triangle, split until a cell holds at most leafTriangles (or
 // reaches kMaxLevel).
 CellOctree buildCellOctree(const TriangleInput& in, const std::vector<double>& areas,
                            uint32_t leafTriangles);
+// The subtree of cell (level, cell) of the cube `frame` (origin and size set), holding every
+// triangle of `in` (all of P(cell), in input order): nodes[0] is that cell.
+void buildCellSubtree(CellOctree& frame, const TriangleInput& in, const std::vector<double>& areas,
+                      uint32_t leafTriangles, uint8_t level, const uint32_t (&cell)[3]);
 
 }  // namespace lzb::sampletree

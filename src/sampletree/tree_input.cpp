@@ -5,12 +5,17 @@
 #include <string>
 
 #include "src/core/error.hpp"
+#include "src/sampletree/triangle_stream.hpp"
 
 namespace lzb::sampletree {
 
+double triangleArea(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  const glm::dvec3 da(a), db(b), dc(c);
+  return 0.5 * glm::length(glm::cross(db - da, dc - da));
+}
+
 double TriangleInput::area(size_t t) const {
-  const glm::dvec3 a(vertex(t, 0)), b(vertex(t, 1)), c(vertex(t, 2));
-  return 0.5 * glm::length(glm::cross(b - a, c - a));
+  return triangleArea(vertex(t, 0), vertex(t, 1), vertex(t, 2));
 }
 
 void TriangleInput::add(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, uint64_t id,
@@ -20,14 +25,15 @@ void TriangleInput::add(const glm::vec3& a, const glm::vec3& b, const glm::vec3&
   colours.push_back(colour);
 }
 
-void requireFloatResolves(const Scene& scene) {
-  const Bounds& b = scene.bounds();
+void requireFloatResolves(const Scene& scene) { requireFloatResolves(scene.bounds(), scene.source); }
+
+void requireFloatResolves(const Bounds& b, const std::string& where) {
   if (b.empty()) return;
   const glm::dvec3 far = glm::max(glm::abs(b.lo), glm::abs(b.hi));
   const double reach = std::max({far.x, far.y, far.z}), size = b.diagonal();
   // Float world coordinates round by half an ulp at the scene's farthest coordinate.
   const double rounding = reach * std::ldexp(1.0, -24);
-  require(rounding <= kMaxFloatRounding * size, scene.source,
+  require(rounding <= kMaxFloatRounding * size, where,
           "the scene lies too far from the origin for the sample tree's float world coordinates "
           "(farthest coordinate " + std::to_string(reach) + ", size " + std::to_string(size) +
               "): recentre it (cell-relative storage is not implemented yet)");
@@ -37,21 +43,15 @@ TriangleInput gatherTriangles(const Scene& scene, uint64_t limit) {
   const uint64_t n = scene.expandedTriangles();
   require(n <= limit, scene.source,
           std::to_string(n) + " expanded triangles, more than the sample tree builds in memory (" +
-              std::to_string(limit) + "; out-of-core construction is not implemented yet)");
+              std::to_string(limit) + "; build it out of core: `lzb build-tree --mem-mb M`)");
   requireFloatResolves(scene);
   TriangleInput in;
   in.positions.reserve(3 * n);
   in.ids.reserve(n);
   in.colours.reserve(n);
-  for (const DrawItem& item : flattenScene(scene)) {
-    const Mesh& mesh = scene.nodes[item.node].mesh;
-    for (size_t t = 0; t < mesh.size(); ++t) {
-      glm::vec3 w[3];
-      for (int k = 0; k < 3; ++k)
-        w[k] = glm::vec3(item.transform * glm::dvec4(glm::dvec3(mesh.vertex(t, k)), 1.0));
-      in.add(w[0], w[1], w[2], item.idBase + t, mesh.colors[t]);
-    }
-  }
+  SceneStream(scene).forEach([&](std::span<const StreamTriangle> batch) {
+    for (const StreamTriangle& t : batch) in.add(t.v[0], t.v[1], t.v[2], t.id, t.colour);
+  });
   return in;
 }
 

@@ -3,10 +3,12 @@
 // instances flattened (this milestone builds in memory; a scene above kMaxInCoreTriangles is
 // refused rather than swapping).
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "src/core/bounds.hpp"
 #include "src/core/color.hpp"
 #include "src/core/scene.hpp"
 
@@ -15,6 +17,9 @@ namespace lzb::sampletree {
 // 2^24 expanded triangles: 48 bytes each in the input, as much again in the tree, and the octree's
 // index lists stay under ~2 GB.
 constexpr uint64_t kMaxInCoreTriangles = uint64_t(1) << 24;
+
+// A triangle's area from its float vertices, in double: the one the build samples by.
+double triangleArea(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
 
 struct TriangleInput {
   std::vector<glm::vec3> positions;  // world, 3 per triangle
@@ -31,6 +36,8 @@ struct TriangleInput {
 // of its size (e.g. a small scene 1e8 from the origin) is refused with exit status 2.
 constexpr double kMaxFloatRounding = 1e-4;
 void requireFloatResolves(const Scene& scene);
+// The same for a scene known by its bounds (a stream's); `where` names it.
+void requireFloatResolves(const Bounds& bounds, const std::string& where);
 
 // Every expanded triangle of the scene in expanded-ID order; throws InputError naming the scene
 // when it has more than `limit` of them.

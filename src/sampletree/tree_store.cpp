@@ -10,6 +10,7 @@
 #include "src/core/error.hpp"
 #include "src/sampletree/crc32c.hpp"
 #include "src/sampletree/store_format.hpp"
+#include "src/sampletree/store_writer.hpp"
 
 namespace lzb::sampletree {
 
@@ -18,35 +19,6 @@ namespace {
 using format::blockCount;
 using format::Header;
 using format::payloadBytes;
-
-// Writes the payload in blocks, keeping each block's CRC.
-class BlockWriter {
- public:
-  explicit BlockWriter(std::ofstream& out) : out_(out) { block_.reserve(kStoreBlock); }
-  void append(const void* data, size_t n) {
-    const auto* p = static_cast<const char*>(data);
-    while (n > 0) {
-      const size_t k = std::min(n, size_t(kStoreBlock) - block_.size());
-      block_.insert(block_.end(), p, p + k);
-      p += k, n -= k;
-      if (block_.size() == kStoreBlock) flush();
-    }
-  }
-  std::vector<uint32_t> finish() {
-    if (!block_.empty()) flush();
-    return std::move(crcs_);
-  }
-
- private:
-  void flush() {
-    crcs_.push_back(crc32c(block_.data(), block_.size()));
-    out_.write(block_.data(), std::streamsize(block_.size()));
-    block_.clear();
-  }
-  std::ofstream& out_;
-  std::vector<char> block_;
-  std::vector<uint32_t> crcs_;
-};
 
 // Reads the payload block by block, checking each block's CRC before handing out its bytes.
 class BlockReader {
@@ -87,45 +59,17 @@ class BlockReader {
 };
 
 template <class T>
-void appendArray(BlockWriter& w, const std::vector<T>& v) {
+void appendArray(StoreWriter& w, const std::vector<T>& v) {
   w.append(v.data(), v.size() * sizeof(T));
 }
 
-Header makeHeader(const SampleTree& tree) {
-  Header h{};
-  std::memcpy(h.magic, format::kMagic, sizeof(format::kMagic));
-  h.version = kStoreVersion;
-  h.blockSize = kStoreBlock;
-  h.nodes = tree.nodes.size();
-  h.triangles = tree.ids.size();
-  h.sceneTriangles = tree.sceneTriangles;
-  h.c = tree.params.c;
-  h.seed = tree.params.seed;
-  h.leafTriangles = tree.params.leafTriangles;
-  for (int k = 0; k < 3; ++k) h.origin[k] = tree.origin[k];
-  h.size = tree.size;
-  h.payloadBytes = payloadBytes(h.nodes, h.triangles);
-  return h;
-}
-
 void writeStoreFile(const SampleTree& tree, const std::filesystem::path& path) {
-  std::ofstream out(path, std::ios::binary);
-  require(bool(out), path.string(), "cannot be created");
-  Header h = makeHeader(tree);
-  out.write(reinterpret_cast<const char*>(&h), sizeof(h));  // rewritten with the CRCs below
-  BlockWriter w(out);
+  StoreWriter w(path, metaOf(tree));
   appendArray(w, tree.nodes);
   appendArray(w, tree.positions);
   appendArray(w, tree.ids);
   appendArray(w, tree.colours);
-  const std::vector<uint32_t> crcs = w.finish();
-  out.write(reinterpret_cast<const char*>(crcs.data()), std::streamsize(crcs.size() * 4));
-  h.tableCrc = crc32c(crcs.data(), crcs.size() * 4);
-  h.headerCrc = crc32c(&h, offsetof(Header, headerCrc));
-  out.seekp(0);
-  out.write(reinterpret_cast<const char*>(&h), sizeof(h));
-  out.close();
-  require(bool(out), path.string(), "write failed");
+  w.finish();
 }
 
 Header readHeader(std::ifstream& in, uint64_t fileBytes, const std::string& where) {

@@ -52,6 +52,13 @@ SampleTree sampleTree() {
 TEST(Crc32c, KnownValue) {
   EXPECT_EQ(crc32c("123456789", 9), 0xE3069283u);  // the standard check value
   EXPECT_EQ(crc32c("6789", 4, crc32c("12345", 5)), 0xE3069283u);
+  EXPECT_EQ(crc32cPortable("123456789", 9), 0xE3069283u);
+  // The instruction and the table agree at every length and alignment.
+  std::vector<uint8_t> bytes(200);
+  for (size_t k = 0; k < bytes.size(); ++k) bytes[k] = uint8_t(k * 37 + 11);
+  for (size_t at = 0; at < 8; ++at)
+    for (size_t n = 0; n + at <= bytes.size(); n += 13)
+      ASSERT_EQ(crc32c(bytes.data() + at, n, 7), crc32cPortable(bytes.data() + at, n, 7)) << n;
 }
 
 TEST(TreeStore, RoundTrips) {

@@ -38,4 +38,10 @@ Generated addBuiltin(Scene& scene, const std::string& spec, const std::filesyste
   throw InputError("builtin:" + spec + ": unknown generator '" + name + "' (known: " + known + ")");
 }
 
+std::optional<BuiltinChunks> builtinChunks(const std::string& spec) {
+  BuiltinParams params(spec);
+  if (params.name() != "landscape") return std::nullopt;
+  return landscapeChunks(params);
+}
+
 }  // namespace lzb

@@ -12,6 +12,7 @@
 // src/scene/README.md documents the parameters and the triangle counts.
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,5 +33,15 @@ Generated addBuiltin(Scene& scene, const std::string& spec,
                      const std::filesystem::path& baseDir = {});
 
 std::vector<std::string> builtinNames();
+
+// A built-in scene handed out in chunks, in triangle order, for builders that stream a scene
+// larger than memory: one node of stored triangles without instances, so the expanded IDs count
+// up through the chunks. generate() makes the same chunks on every call.
+struct BuiltinChunks {
+  uint64_t triangles = 0;  // before degenerate ones are dropped
+  std::function<void(const std::function<void(const Mesh&)>&)> generate;
+};
+// Only landscape streams: nullopt for every other generator. Throws InputError for a bad spec.
+std::optional<BuiltinChunks> builtinChunks(const std::string& spec);
 
 }  // namespace lzb

@@ -2,6 +2,7 @@
 // The generators behind addBuiltin (one file each: builtin_<name>.cpp).
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "src/core/scene.hpp"
@@ -15,6 +16,8 @@ Generated generateCity(Scene& scene, BuiltinParams& params);
 Generated generateForest(Scene& scene, BuiltinParams& params);
 Generated generateSphereflake(Scene& scene, BuiltinParams& params);
 Generated generateLandscape(Scene& scene, BuiltinParams& params);
+// The same triangles as generateLandscape, handed out in chunks (parameters checked now).
+BuiltinChunks landscapeChunks(BuiltinParams& params);
 Generated generateDisplaced(Scene& scene, BuiltinParams& params);
 Generated generateTerrain(Scene& scene, BuiltinParams& params);
 Generated generateHaltonForest(Scene& scene, BuiltinParams& params);

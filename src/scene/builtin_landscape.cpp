@@ -4,6 +4,7 @@
 // so the objects' density stays the same; each object is a rock or a tree (24 triangles) with
 // its own size, colour and randomly jittered vertices, standing at the terrain height.
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include "src/scene/builtin_generators.hpp"
@@ -77,32 +78,64 @@ void addObject(MeshBuilder& b, const Terrain& t, Rng& rng) {
           0.7 * height, shade(52, 110, 48));
 }
 
+// The landscape's parameters and its generator state, shared by the in-memory generator and the
+// stream: both draw the same random numbers in the same order, so they make the same triangles.
+struct Landscape {
+  int64_t objects;
+  Rng rng;
+  Terrain terrain;
+  explicit Landscape(BuiltinParams& params)
+      : objects(params.integer("objects", 1000, 0, int64_t(1) << 22)),
+        rng(params.seed("seed", 1)),
+        terrain{kSpacing * std::sqrt(double(objects) + 400.0), {}} {
+    params.finish();
+    for (double& p : terrain.phase) p = rng.uniform(0.0, 2.0 * std::numbers::pi);
+  }
+  size_t triangles() const { return size_t(2 * kGrid * kGrid) + size_t(objects) * 4 * kSides; }
+};
+
+constexpr int64_t kStreamObjects = 1 << 12;  // objects per streamed chunk (~100 K triangles, 5 MB)
+
 }  // namespace
 
 Generated generateLandscape(Scene& scene, BuiltinParams& params) {
-  const int64_t objects = params.integer("objects", 1000, 0, int64_t(1) << 22);
-  const uint64_t seed = params.seed("seed", 1);
-  params.finish();
-  Rng rng(seed);
-  Terrain t{kSpacing * std::sqrt(double(objects) + 400.0), {}};
-  for (double& p : t.phase) p = rng.uniform(0.0, 2.0 * std::numbers::pi);
+  Landscape land(params);
   Generated out;
   out.root = scene.addNode("landscape");
   Mesh& mesh = scene.nodes[out.root].mesh;
-  const size_t triangles = size_t(2 * kGrid * kGrid) + size_t(objects) * 4 * kSides;
-  mesh.positions.reserve(3 * triangles);
-  mesh.normals.reserve(triangles);
-  mesh.colors.reserve(triangles);
+  mesh.positions.reserve(3 * land.triangles());
+  mesh.normals.reserve(land.triangles());
+  mesh.colors.reserve(land.triangles());
   MeshBuilder builder(mesh, scene.stats);
-  addTerrain(builder, t);
-  for (int64_t k = 0; k < objects; ++k) addObject(builder, t, rng);
+  addTerrain(builder, land.terrain);
+  for (int64_t k = 0; k < land.objects; ++k) addObject(builder, land.terrain, land.rng);
   CameraSpec camera;  // low over one edge, looking across
-  camera.position = {0.0, 25.0, 0.5 * t.side + 10.0};
+  camera.position = {0.0, 25.0, 0.5 * land.terrain.side + 10.0};
   camera.lookAt = {0.0, 0.0, 0.0};
   camera.fovyDegrees = 50.0;
   camera.nearPlane = 0.5;
   out.camera = camera;
   return out;
+}
+
+BuiltinChunks landscapeChunks(BuiltinParams& params) {
+  const uint64_t triangles = Landscape(params).triangles();
+  return {triangles, [spec = params.spec()](const std::function<void(const Mesh&)>& chunk) {
+            BuiltinParams again(spec);
+            Landscape land(again);
+            Mesh mesh;
+            LoadStats stats;
+            MeshBuilder builder(mesh, stats);
+            addTerrain(builder, land.terrain);
+            for (int64_t k = 0; k < land.objects; ++k) {
+              addObject(builder, land.terrain, land.rng);
+              if ((k + 1) % kStreamObjects == 0) {
+                chunk(mesh);
+                mesh = Mesh();
+              }
+            }
+            if (!mesh.empty()) chunk(mesh);
+          }};
 }
 
 }  // namespace lzb

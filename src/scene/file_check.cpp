@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "src/core/error.hpp"
+#include "src/scene/ply_header.hpp"
 
 namespace lzb {
 
@@ -49,111 +50,19 @@ class Tokens {
 
 // ---- PLY ----
 
-struct PlyProperty {
-  int size = 0;       // bytes of a scalar, or of a list item
-  int countSize = 0;  // > 0 for lists: bytes of the count
-};
-
-struct PlyElement {
-  std::string name;
-  uint64_t count = 0;
-  std::vector<PlyProperty> properties;
-};
-
-int plyTypeSize(const std::string& t) {
-  static const std::pair<const char*, int> kTypes[] = {
-      {"char", 1},  {"uchar", 1},   {"int8", 1},   {"uint8", 1},  {"short", 2}, {"ushort", 2},
-      {"int16", 2}, {"uint16", 2},  {"int", 4},    {"uint", 4},   {"int32", 4}, {"uint32", 4},
-      {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
-  for (const auto& [name, size] : kTypes)
-    if (t == name) return size;
-  return 0;
-}
-
 uint64_t readUnsigned(const unsigned char* p, int size, bool bigEndian) {
   uint64_t v = 0;
   for (int i = 0; i < size; ++i) v |= uint64_t(p[bigEndian ? size - 1 - i : i]) << (8 * i);
   return v;
 }
 
-std::vector<std::string> wordsOf(const std::string& line) {
-  std::istringstream s(line);
-  std::vector<std::string> words;
-  for (std::string w; s >> w;) words.push_back(w);
-  return words;
-}
-
-// One "property" line of element `e` (words split).
-PlyProperty plyProperty(const std::vector<std::string>& w, const std::string& line,
-                        const std::string& where) {
-  PlyProperty p;
-  if (w[1] == "list") {
-    require(w.size() == 5, where, "malformed PLY header line '" + line + "'");
-    p.countSize = plyTypeSize(w[2]);
-    p.size = plyTypeSize(w[3]);
-    require(p.countSize > 0 && p.size > 0, where, "unknown PLY list type in '" + line + "'");
-    // A count is an integer (at most 4 bytes here); a float one would be read two ways.
-    require(w[2].find("float") == std::string::npos && w[2] != "double", where,
-            "PLY list count type must be an integer type in '" + line + "'");
-    return p;
-  }
-  require(w.size() == 3, where, "malformed PLY header line '" + line + "'");
-  p.size = plyTypeSize(w[1]);
-  require(p.size > 0, where, "unknown PLY property type in '" + line + "'");
-  return p;
-}
-
-// The header's elements. Other lines pass (Blender 2.47 wrote free text), as assimp reads them.
-std::vector<PlyElement> plyHeader(const std::string& text, const std::string& where,
-                                  std::string& format) {
-  std::istringstream header(text);
-  std::vector<PlyElement> elements;
-  for (std::string line; std::getline(header, line);) {
-    const std::vector<std::string> w = wordsOf(line);
-    if (w.empty() || w[0] == "ply" || w[0] == "comment" || w[0] == "obj_info") continue;
-    if (w[0] == "format") {
-      require(w.size() == 3, where, "malformed PLY header line '" + line + "'");
-      format = w[1];
-    } else if (w[0] == "element") {
-      PlyElement e;
-      const auto r = w.size() == 3 ? std::from_chars(w[2].data(), w[2].data() + w[2].size(), e.count)
-                                   : std::from_chars_result{nullptr, std::errc::invalid_argument};
-      require(r.ec == std::errc() && r.ptr == w[2].data() + w[2].size(), where,
-              "malformed PLY header line '" + line + "'");
-      e.name = w[1];
-      elements.push_back(e);
-    } else if (w[0] == "property") {
-      require(!elements.empty(), where, "PLY property before any element");
-      require(w.size() >= 3, where, "malformed PLY header line '" + line + "'");
-      elements.back().properties.push_back(plyProperty(w, line, where));
-    }
-  }
-  for (const PlyElement& e : elements)
-    require(e.count == 0 || !e.properties.empty(), where,
-            "PLY element '" + e.name + "' has no properties");
-  require(std::any_of(elements.begin(), elements.end(),
-                      [](const PlyElement& e) { return e.name == "vertex"; }),
-          where, "PLY header declares no 'vertex' element");
-  return elements;
-}
-
 void checkPly(const std::filesystem::path& path, const std::string& data) {
   const std::string where = path.string();
-  // The header is text up to the line "end_header"; the data starts after that line.
-  const size_t endHeader = data.find("end_header");
-  require(endHeader != std::string::npos, where,
-          "PLY header has no end_header (truncated or malformed)");
-  // assimp loops forever on an end_header inside a line or run on ("end_headerat").
-  const size_t after = endHeader + 10;
-  require(data[endHeader - 1] == '\n' &&
-              (after == data.size() || data[after] == '\n' || data.compare(after, 2, "\r\n") == 0),
-          where, "PLY end_header is not on a line of its own");
-  // assimp reads the header as C strings: a NUL in it hides the rest (then it crashed).
-  require(data.find('\0') > endHeader, where, "PLY header holds a NUL byte");
-  const size_t eol = data.find('\n', endHeader);
-  const size_t dataStart = eol == std::string::npos ? data.size() : eol + 1;
-  std::string format;
-  const std::vector<PlyElement> elements = plyHeader(data.substr(0, endHeader), where, format);
+  // The header's rules (end_header on a line of its own, no NUL, known types...): ply_header.hpp.
+  const PlyHeader header = parsePlyHeader(data, where);
+  const std::vector<PlyElement>& elements = header.elements;
+  const std::string& format = header.format;
+  const uint64_t dataStart = header.dataStart;
   if (format == "ascii") {
     // One token per scalar; a list is its count followed by that many items.
     Tokens tokens(data, dataStart);
@@ -164,7 +73,7 @@ void checkPly(const std::filesystem::path& path, const std::string& data) {
           require(tokens.next(t), where,
                   "truncated: PLY data ends inside element '" + e.name + "' " + std::to_string(i) +
                       " of " + std::to_string(e.count));
-          if (p.countSize == 0) continue;
+          if (!p.list) continue;
           uint64_t items = 0;
           const auto r = std::from_chars(t.data(), t.data() + t.size(), items);
           require(r.ec == std::errc() && r.ptr == t.data() + t.size(), where,
@@ -184,10 +93,10 @@ void checkPly(const std::filesystem::path& path, const std::string& data) {
   const uint64_t end = data.size();
   for (const PlyElement& e : elements) {
     const bool fixed = std::none_of(e.properties.begin(), e.properties.end(),
-                                    [](const PlyProperty& p) { return p.countSize > 0; });
+                                    [](const PlyProperty& p) { return p.list; });
     if (fixed) {
       uint64_t stride = 0;
-      for (const PlyProperty& p : e.properties) stride += uint64_t(p.size);
+      for (const PlyProperty& p : e.properties) stride += uint64_t(plyTypeBytes(p.type));
       require(stride == 0 || e.count <= (end - at) / stride, where,
               "truncated: PLY binary data too short for " + std::to_string(e.count) + " '" +
                   e.name + "' elements");
@@ -201,19 +110,21 @@ void checkPly(const std::filesystem::path& path, const std::string& data) {
                   "truncated: PLY binary data ends inside element '" + e.name + "' " +
                       std::to_string(i) + " of " + std::to_string(e.count));
         };
-        if (p.countSize == 0) {
-          need(uint64_t(p.size));
-          at += uint64_t(p.size);
+        const uint64_t size = uint64_t(plyTypeBytes(p.type));
+        if (!p.list) {
+          need(size);
+          at += size;
           continue;
         }
-        need(uint64_t(p.countSize));
-        const uint64_t items = readUnsigned(bytes + at, p.countSize, big);
-        at += uint64_t(p.countSize);
-        // Divided, not multiplied: an 8-byte count near 2^64 must not wrap.
-        require(items <= (end - at) / uint64_t(p.size), where,
+        const int countSize = plyTypeBytes(p.countType);
+        need(uint64_t(countSize));
+        const uint64_t items = readUnsigned(bytes + at, countSize, big);
+        at += uint64_t(countSize);
+        // Divided, not multiplied: a count near 2^32 must not wrap.
+        require(items <= (end - at) / size, where,
                 "truncated: PLY binary data ends inside element '" + e.name + "' " +
                     std::to_string(i) + " of " + std::to_string(e.count));
-        at += items * uint64_t(p.size);
+        at += items * size;
       }
   }
 }

@@ -15,14 +15,11 @@
 #include "src/core/error.hpp"
 #include "src/scene/file_check.hpp"
 #include "src/scene/mesh_builder.hpp"
-#include "src/scene/triangulate.hpp"
+#include "src/scene/mesh_faces.hpp"
 
 namespace lzb {
 
 namespace {
-
-// Geometry whose centre lies farther from the origin than this many times its size is recentred.
-constexpr double kFarFactor = 1e3;
 
 glm::dmat4 toGlm(const aiMatrix4x4& m) {
   // assimp matrices are row-major (a1..a4 is the first row); glm is column-major.
@@ -43,21 +40,18 @@ struct MeshUse {
   glm::dmat4 transform;
 };
 
-// Where to store `uses` around: the origin, or the centre of their bounds when that lies far
-// away relative to their size (float positions far from 0 lose their low bits; the offset then
-// goes into a double-precision instance translation instead).
-glm::dvec3 storageOrigin(const std::vector<MeshUse>& uses) {
+// Where to store `uses` around (mesh_faces.hpp): the origin, or the centre of their bounds when
+// that lies far away relative to their size (float positions far from 0 lose their low bits; the
+// offset then goes into a double-precision instance translation instead).
+glm::dvec3 originOf(const std::vector<MeshUse>& uses) {
   Bounds b;
   for (const MeshUse& u : uses)
     for (unsigned i = 0; i < u.mesh->mNumVertices; ++i) {
       const aiVector3D& v = u.mesh->mVertices[i];
-      const glm::dvec3 p(u.transform * glm::dvec4(v.x, v.y, v.z, 1.0));
+      const glm::dvec3 p = storedVertex(u.transform, v.x, v.y, v.z, glm::dvec3(0.0));
       if (finite(p)) b.extend(p);
     }
-  if (b.empty()) return glm::dvec3(0.0);
-  const glm::dvec3 e = b.extent();
-  return glm::length(b.center()) > kFarFactor * std::max({e.x, e.y, e.z}) ? b.center()
-                                                                          : glm::dvec3(0.0);
+  return storageOrigin(b);
 }
 
 class FileLoader {
@@ -123,41 +117,29 @@ Rgba8 FileLoader::materialColor(unsigned index) const {
 
 void FileLoader::build(const std::vector<MeshUse>& uses, const glm::dvec3& origin, Mesh& out) {
   MeshBuilder builder(out, stats_);
-  std::vector<glm::dvec3> polygon;
-  std::vector<std::array<uint32_t, 3>> pieces;
+  FaceSplitter face;
   for (const MeshUse& use : uses) {
     const aiMesh& mesh = *use.mesh;
     if (!mesh.HasPositions()) {
       stats_.degenerate += mesh.mNumFaces;
       continue;
     }
-    const Rgba8 material = materialColor(mesh.mMaterialIndex);
+    const Rgba8 plain = override_ ? *override_ : materialColor(mesh.mMaterialIndex);
     const bool vertexColors = mesh.HasVertexColors(0) && !override_;
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
-      const aiFace& face = mesh.mFaces[f];
-      if (face.mNumIndices < 3) {  // points and lines have no area
-        ++stats_.degenerate;
-        continue;
+      const aiFace& aface = mesh.mFaces[f];
+      face.polygon.clear();
+      for (unsigned k = 0; k < aface.mNumIndices; ++k) {
+        const aiVector3D& v = mesh.mVertices[aface.mIndices[k]];
+        face.polygon.push_back(storedVertex(use.transform, v.x, v.y, v.z, origin));
       }
-      polygon.clear();
-      for (unsigned k = 0; k < face.mNumIndices; ++k) {
-        const aiVector3D& v = mesh.mVertices[face.mIndices[k]];
-        polygon.push_back(glm::dvec3(use.transform * glm::dvec4(v.x, v.y, v.z, 1.0)) - origin);
-      }
-      pieces.clear();
-      triangulatePolygon(polygon, pieces);
-      for (const auto& t : pieces) {
-        Rgba8 color = override_ ? *override_ : material;
-        if (vertexColors) {
-          glm::vec3 sum(0.0f);
-          for (uint32_t k : t) {
-            const aiColor4D& c = mesh.mColors[0][face.mIndices[k]];
-            sum += glm::vec3(c.r, c.g, c.b);
-          }
-          color = packRgb(sum / 3.0f);
-        }
-        builder.triangle(polygon[t[0]], polygon[t[1]], polygon[t[2]], color);
-      }
+      const auto rgb = [&](uint32_t k) {
+        const aiColor4D& c = mesh.mColors[0][aface.mIndices[k]];
+        return glm::vec3(c.r, c.g, c.b);
+      };
+      face.split(builder, stats_, [&](const std::array<uint32_t, 3>& t) {
+        return vertexColors ? meanColour(rgb(t[0]), rgb(t[1]), rgb(t[2])) : plain;
+      });
     }
   }
 }
@@ -174,7 +156,7 @@ void FileLoader::walk(const aiNode& node, const glm::dmat4& parent) {
     }
     if (meshNode_[k] == -1) {
       const std::vector<MeshUse> local = {{ai_->mMeshes[k], glm::dmat4(1.0)}};
-      const glm::dvec3 origin = storageOrigin(local);
+      const glm::dvec3 origin = originOf(local);
       Mesh mesh;
       build(local, origin, mesh);
       if (mesh.empty()) {
@@ -222,7 +204,7 @@ uint32_t FileLoader::load() {
   count(*ai_->mRootNode, count);
   walk(*ai_->mRootNode, glm::dmat4(1.0));
 
-  const glm::dvec3 origin = storageOrigin(baked_);
+  const glm::dvec3 origin = originOf(baked_);
   Mesh baked;
   build(baked_, origin, baked);
   const std::string name = path_.stem().string();

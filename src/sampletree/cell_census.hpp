@@ -1,0 +1,73 @@
+#pragma once
+// The counting passes of the external construction (section 5.1): |P(u)| and A(P(u)) of the
+// octree's cells, found by following each streamed triangle down the same child rule as the
+// in-memory build (childOctant), without holding the triangles. Cells are counted a few levels per
+// pass, and a pass descends only below cells found too large for a bucket, so the census stays
+// small: it classifies cells into the top levels (built last, in memory) and buckets (subtrees
+// whose triangles fit the memory budget, built one at a time).
+#include <cstdint>
+#include <unordered_map>
+
+#include "src/sampletree/cell_octree.hpp"
+#include "src/sampletree/triangle_stream.hpp"
+
+namespace lzb::sampletree {
+
+struct CellKey {
+  uint8_t level = 0;
+  uint32_t cell[3] = {0, 0, 0};
+  bool operator==(const CellKey& o) const {
+    return level == o.level && cell[0] == o.cell[0] && cell[1] == o.cell[1] && cell[2] == o.cell[2];
+  }
+  CellKey child(int octant) const;
+};
+struct CellKeyHash {
+  size_t operator()(const CellKey& k) const;
+};
+
+// Follows triangle t down the octree of `frame` (origin and size): calls visit(cell) from the root
+// on, going on into the child that takes t while visit returns true; stops where t stays in a
+// cell (no child takes it) or at kMaxLevel.
+template <class Visit>
+void descend(const StreamTriangle& t, const CellOctree& frame, Visit&& visit);
+
+struct CellStat {
+  uint64_t count = 0;  // |P(u)|
+  double area = 0.0;   // A(P(u)), summed in input order as the in-memory build sums it
+};
+
+class CellCensus {
+ public:
+  // Passes over `in` until every cell on a path is classified; a cell above bucketTriangles is a
+  // top cell (split, unless at kMaxLevel).
+  CellCensus(const TriangleStream& in, const CellOctree& frame, uint64_t bucketTriangles);
+  // The cell's statistics; nullptr when no triangle reaches it.
+  const CellStat* find(const CellKey& k) const;
+  // Split in the in-memory build too: more than a bucket holds (more than a leaf), above kMaxLevel.
+  bool top(const CellKey& k) const;
+  int passes() const { return passes_; }
+  size_t cells() const { return stats_.size(); }
+
+ private:
+  void pass(const TriangleStream& in, const CellOctree& frame, int lo, int hi);
+  std::unordered_map<CellKey, CellStat, CellKeyHash> stats_;
+  uint64_t bucketTriangles_;
+  int passes_ = 0;
+};
+
+template <class Visit>
+void descend(const StreamTriangle& t, const CellOctree& frame, Visit&& visit) {
+  const glm::dvec3 a(t.v[0]), b(t.v[1]), c(t.v[2]);
+  CellKey key;
+  while (visit(static_cast<const CellKey&>(key)) && key.level < kMaxLevel) {
+    // The same expressions as the in-memory Builder, so the same doubles.
+    const double s = frame.size / double(uint64_t(1) << key.level);
+    const glm::dvec3 centre =
+        frame.origin + s * (glm::dvec3(key.cell[0], key.cell[1], key.cell[2]) + 0.5);
+    const int o = childOctant(a, b, c, centre, 0.5 * frame.size / double(uint64_t(1) << key.level));
+    if (o < 0) return;
+    key = key.child(o);
+  }
+}
+
+}  // namespace lzb::sampletree

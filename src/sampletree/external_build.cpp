@@ -1,0 +1,444 @@
+#include "src/sampletree/external_build.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <exception>
+#include <memory>
+#include <optional>
+#include <unordered_map>
+#include <vector>
+
+#include "src/core/atomic_file.hpp"
+#include "src/core/error.hpp"
+#include "src/core/progress.hpp"
+#include "src/core/timer.hpp"
+#include "src/sampletree/cell_census.hpp"
+#include "src/sampletree/sample_draw.hpp"
+#include "src/sampletree/scratch_file.hpp"
+#include "src/sampletree/spill_file.hpp"
+#include "src/sampletree/store_writer.hpp"
+#include "src/sampletree/tree_build.hpp"
+#include "src/sampletree/tree_layout.hpp"
+#include "src/sampletree/tree_store.hpp"
+
+namespace lzb::sampletree {
+
+namespace {
+
+// The input with a progress line per pass.
+class PassStream : public TriangleStream {
+ public:
+  PassStream(const TriangleStream& in, bool progress, ExternalReport& report)
+      : in_(in), progress_(progress), report_(report) {}
+  const std::string& where() const override { return in_.where(); }
+  uint64_t expected() const override { return in_.expected(); }
+  void forEach(const TriangleSink& sink) const override {
+    const int pass = ++report_.streamPasses;
+    const Stopwatch clock;
+    Progress line("build-tree: input pass " + std::to_string(pass), in_.expected(), progress_);
+    in_.forEach([&](std::span<const StreamTriangle> batch) {
+      sink(batch);
+      line.add(batch.size());
+    });
+    report_.inputSeconds += clock.seconds();
+  }
+
+ private:
+  const TriangleStream& in_;
+  bool progress_;
+  ExternalReport& report_;
+};
+
+// The scratch folder, removed with everything in it when the build ends (or fails).
+struct ScratchDir {
+  std::filesystem::path path;
+  explicit ScratchDir(const std::filesystem::path& parent)
+      : path(parent / (".lzb-build-tree-" + std::to_string(::getpid()))) {
+    std::filesystem::create_directories(path);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+};
+
+// Cells classified by the census, in preorder (children in octant order).
+struct Plan {
+  std::vector<CellKey> buckets;
+  std::unordered_map<CellKey, uint32_t, CellKeyHash> bucketOf, topOf;
+  size_t tops = 0;
+};
+
+void classify(const CellCensus& census, const CellKey& key, Plan& plan) {
+  if (!census.top(key)) {
+    plan.bucketOf.emplace(key, uint32_t(plan.buckets.size()));
+    plan.buckets.push_back(key);
+    return;
+  }
+  plan.topOf.emplace(key, uint32_t(plan.tops++));
+  for (int o = 0; o < 8; ++o)
+    if (census.find(key.child(o))) classify(census, key.child(o), plan);
+}
+
+// A bucket after its build: its root as the top levels see it (its triangles moved to the top
+// input), and where its nodes below the root lie in the scratch arrays.
+struct BucketResult {
+  BuildNode root;
+  HiddenSubtree below;
+  uint64_t nodesAt = 0, positionsAt = 0, idsAt = 0, coloursAt = 0;  // byte offsets
+};
+
+struct ScratchArrays {
+  ScratchFile nodes, positions, ids, colours;
+  explicit ScratchArrays(const std::filesystem::path& dir)
+      : nodes(dir / "nodes"), positions(dir / "positions"), ids(dir / "ids"),
+        colours(dir / "colours") {}
+};
+
+template <class T>
+uint64_t appendVector(ScratchFile& f, const std::vector<T>& v) {
+  return f.append(v.data(), v.size() * sizeof(T));
+}
+
+TriangleInput toInput(const std::vector<StreamTriangle>& tris) {
+  TriangleInput in;
+  in.positions.reserve(3 * tris.size());
+  in.ids.reserve(tris.size());
+  in.colours.reserve(tris.size());
+  for (const StreamTriangle& t : tris) in.add(t.v[0], t.v[1], t.v[2], t.id, t.colour);
+  return in;
+}
+
+std::vector<double> areasOf(const TriangleInput& in) {
+  std::vector<double> areas(in.size());
+  for (size_t t = 0; t < in.size(); ++t) areas[t] = in.area(t);
+  return areas;
+}
+
+void requireTopFits(uint64_t triangles, uint64_t limit) {
+  require(triangles <= limit, "--mem-mb",
+          "the top levels (cells above the buckets) hold more than the " + std::to_string(limit) +
+              " triangles the budget gives them: raise it");
+}
+
+// One bucket built as the in-memory build builds that cell: the nodes below its root laid out,
+// and its root with the triangles left in it (indices into rootTriangles).
+struct BuiltBucket {
+  SampleTree below;
+  BuildNode root;
+  TriangleInput rootTriangles;
+};
+
+BuiltBucket buildBucket(const CellKey& key, const std::vector<StreamTriangle>& tris,
+                        const CellOctree& frame, const TreeParams& params, int threads) {
+  const TriangleInput in = toInput(tris);
+  const std::vector<double> areas = areasOf(in);
+  CellOctree oct;
+  oct.origin = frame.origin;
+  oct.size = frame.size;
+  buildCellSubtree(oct, in, areas, params.leafTriangles, key.level, key.cell);
+  drawSamples(oct, areas, params.c, params.seed, threads);
+  BuiltBucket b;
+  TreeLayout(oct, in, areas).emitChildren(0, b.below);
+  b.root = oct.nodes[0];
+  b.root.child.fill(kNoChild);
+  b.root.own.clear();
+  for (uint32_t t : oct.nodes[0].own) {
+    b.root.own.push_back(uint32_t(b.rootTriangles.size()));
+    b.rootTriangles.add(in.vertex(t, 0), in.vertex(t, 1), in.vertex(t, 2), in.ids[t], in.colours[t]);
+  }
+  return b;
+}
+
+// Appends a built bucket to the scratch arrays and its root's triangles to the top levels' input.
+BucketResult commitBucket(BuiltBucket&& b, TriangleInput& top, ScratchArrays& scratch) {
+  BucketResult r;
+  r.below = {b.below.nodes.size(), b.below.ids.size()};
+  r.nodesAt = appendVector(scratch.nodes, b.below.nodes);
+  r.positionsAt = appendVector(scratch.positions, b.below.positions);
+  r.idsAt = appendVector(scratch.ids, b.below.ids);
+  r.coloursAt = appendVector(scratch.colours, b.below.colours);
+  r.root = std::move(b.root);
+  for (uint32_t& t : r.root.own) {
+    const uint32_t k = t;
+    t = uint32_t(top.size());
+    top.add(b.rootTriangles.vertex(k, 0), b.rootTriangles.vertex(k, 1),
+            b.rootTriangles.vertex(k, 2), b.rootTriangles.ids[k], b.rootTriangles.colours[k]);
+  }
+  return r;
+}
+
+// Builds the buckets `threads` at a time (one thread each: a bucket's own sampling gains little
+// from more), committing them in order.
+std::vector<BucketResult> buildBuckets(const Plan& plan, const SpillFile& spill,
+                                       const CellOctree& frame, const TreeParams& params,
+                                       int threads, const ExternalOptions& options,
+                                       TriangleInput& top, ScratchArrays& scratch) {
+  std::vector<BucketResult> results;
+  uint64_t total = 0;
+  for (uint32_t b = 0; b < plan.buckets.size(); ++b) total += spill.count(b);
+  Progress progress("build-tree: buckets", total, options.progress);
+  const size_t group = size_t(std::max(threads, 1));
+  for (size_t first = 0; first < plan.buckets.size(); first += group) {
+    const size_t n = std::min(group, plan.buckets.size() - first);
+    std::vector<BuiltBucket> built(n);
+    std::vector<std::exception_ptr> errors(n);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(int(n))
+    for (size_t k = 0; k < n; ++k) {
+      try {
+        const uint32_t b = uint32_t(first + k);
+        built[k] = buildBucket(plan.buckets[b], spill.read(b), frame, params, 1);
+        progress.add(spill.count(b));
+      } catch (...) {
+        errors[k] = std::current_exception();
+      }
+    }
+    for (size_t k = 0; k < n; ++k) {
+      if (errors[k]) std::rethrow_exception(errors[k]);
+      results.push_back(commitBucket(std::move(built[k]), top, scratch));
+      requireTopFits(top.size(), options.topTriangles);
+    }
+  }
+  return results;
+}
+
+// The top levels as an octree: top cells with the triangles that stay in them, and the buckets'
+// roots as leaves (their subtrees hidden below them).
+struct TopTree {
+  CellOctree oct;
+  std::vector<HiddenSubtree> hidden;
+  std::vector<int64_t> bucketAt;  // per node: its bucket, or -1
+};
+
+int32_t addTopNode(const CellCensus& census, const Plan& plan, const CellKey& key,
+                   const std::vector<BucketResult>& buckets,
+                   const std::vector<std::vector<uint32_t>>& stays, TopTree& t) {
+  const int32_t index = int32_t(t.oct.nodes.size());
+  if (const auto b = plan.bucketOf.find(key); b != plan.bucketOf.end()) {
+    t.oct.nodes.push_back(buckets[b->second].root);
+    t.hidden.push_back(buckets[b->second].below);
+    t.bucketAt.push_back(b->second);
+    return index;
+  }
+  BuildNode n;
+  std::copy(key.cell, key.cell + 3, n.cell);
+  n.level = key.level;
+  n.subtreeTriangles = census.find(key)->count;
+  n.subtreeArea = census.find(key)->area;
+  n.own = stays[plan.topOf.at(key)];
+  t.oct.nodes.push_back(std::move(n));
+  t.hidden.emplace_back();
+  t.bucketAt.push_back(-1);
+  for (int o = 0; o < 8; ++o)
+    if (census.find(key.child(o))) {
+      const int32_t c = addTopNode(census, plan, key.child(o), buckets, stays, t);
+      t.oct.nodes[size_t(index)].child[size_t(o)] = c;
+    }
+  return index;
+}
+
+// Copies n elements of T from a scratch file at byte offset `at` to the store, in pieces,
+// shifting nodes by `shift` when given.
+template <class T, class Shift>
+void copyScratch(const ScratchFile& f, uint64_t at, uint64_t n, StoreWriter& w, Shift&& shift) {
+  constexpr uint64_t kPiece = 1 << 16;
+  std::vector<T> piece;
+  for (uint64_t done = 0; done < n; done += kPiece) {
+    piece.resize(size_t(std::min(kPiece, n - done)));
+    f.read(at + done * sizeof(T), piece.size() * sizeof(T), piece.data());
+    for (T& x : piece) shift(x);
+    w.append(piece.data(), piece.size() * sizeof(T));
+  }
+}
+
+// Writes the store: the top levels' nodes and triangles with every bucket's spliced in where its
+// root stands, section by section.
+struct StoreAssembly {
+  const SampleTree& head;  // the top levels laid out (buckets' roots included)
+  const std::vector<std::pair<size_t, size_t>>& splices;  // (head node, top octree node)
+  const TopTree& top;
+  const std::vector<BucketResult>& buckets;
+  const ScratchArrays& scratch;
+
+  const BucketResult& spliced(size_t k) const {
+    return buckets[size_t(top.bucketAt[splices[k].second])];
+  }
+  void nodes(StoreWriter& w) const {
+    uint64_t hiddenBefore = 0;
+    size_t next = 0;
+    for (size_t k = 0; k < head.nodes.size(); ++k) {
+      w.append(&head.nodes[k], sizeof(TreeNode));
+      if (next == splices.size() || splices[next].first != k) continue;
+      const BucketResult& b = spliced(next++);
+      const uint64_t nodeBase = k + hiddenBefore + 1;
+      const uint64_t triBase = head.nodes[k].firstTriangle + head.nodes[k].triangleCount;
+      copyScratch<TreeNode>(scratch.nodes, b.nodesAt, b.below.nodes, w, [&](TreeNode& n) {
+        n.firstTriangle += triBase;
+        n.subtreeEnd = uint32_t(n.subtreeEnd + nodeBase);
+      });
+      hiddenBefore += b.below.nodes;
+    }
+  }
+  // One triangle array: the head's part of each node, then the spliced bucket's.
+  template <class T>
+  void triangles(StoreWriter& w, const std::vector<T>& own, size_t perTriangle,
+                 const ScratchFile& f, uint64_t BucketResult::*at) const {
+    size_t cursor = 0, next = 0;
+    for (size_t k = 0; k < head.nodes.size(); ++k) {
+      const size_t n = size_t(head.nodes[k].triangleCount) * perTriangle;
+      w.append(own.data() + cursor, n * sizeof(T));
+      cursor += n;
+      if (next == splices.size() || splices[next].first != k) continue;
+      const BucketResult& b = spliced(next++);
+      copyScratch<T>(f, b.*at, b.below.triangles * perTriangle, w, [](T&) {});
+    }
+  }
+  void write(StoreWriter& w) const {
+    nodes(w);
+    triangles(w, head.positions, 3, scratch.positions, &BucketResult::positionsAt);
+    triangles(w, head.ids, 1, scratch.ids, &BucketResult::idsAt);
+    triangles(w, head.colours, 1, scratch.colours, &BucketResult::coloursAt);
+  }
+};
+
+Bounds boundsPass(const TriangleStream& in, uint64_t& count) {
+  Bounds b;
+  count = 0;
+  in.forEach([&](std::span<const StreamTriangle> batch) {
+    for (const StreamTriangle& t : batch)
+      for (const glm::vec3& v : t.v) b.extend(glm::dvec3(v));
+    count += batch.size();
+  });
+  return b;
+}
+
+// The writing pass: each triangle to its bucket, or kept where it stays in a top cell.
+std::vector<std::vector<StreamTriangle>> writingPass(const TriangleStream& in,
+                                                     const CellOctree& frame,
+                                                     const CellCensus& census, const Plan& plan,
+                                                     SpillFile& spill, uint64_t limit) {
+  std::vector<std::vector<StreamTriangle>> stays(plan.tops);
+  uint64_t stayed = 0;
+  in.forEach([&](std::span<const StreamTriangle> batch) {
+    for (const StreamTriangle& t : batch) {
+      CellKey last;
+      descend(t, frame, [&](const CellKey& k) {
+        last = k;
+        return census.top(k);
+      });
+      if (const auto top = plan.topOf.find(last); top != plan.topOf.end()) {
+        stays[top->second].push_back(t);
+        requireTopFits(++stayed, limit);
+      } else {
+        spill.add(plan.bucketOf.at(last), t);
+      }
+    }
+  });
+  spill.flush();
+  return stays;
+}
+
+}  // namespace
+
+ExternalOptions optionsForMemory(uint64_t memBytes, const TreeParams& params, int threads) {
+  ExternalOptions o;
+  o.bucketTriangles = memBytes / 10 * 6 / kBuildBytesPerTriangle / uint64_t(std::max(threads, 1));
+  o.bufferTriangles = std::max<uint64_t>(memBytes / 100 * 15 / sizeof(StreamTriangle), 1);
+  o.topTriangles = memBytes / 10 / kBuildBytesPerTriangle;
+  require(o.bucketTriangles > params.leafTriangles, "--mem-mb",
+          "too small: a bucket would hold " + std::to_string(o.bucketTriangles) +
+              " triangles, not more than a leaf (" + std::to_string(params.leafTriangles) + ")");
+  return o;
+}
+
+ExternalReport buildTreeExternal(const TriangleStream& source, const TreeParams& params,
+                                 const ExternalOptions& options, int threads,
+                                 const std::string& out) {
+  validateParams(params);
+  require(options.bucketTriangles > params.leafTriangles, "--mem-mb",
+          "a bucket must hold more triangles than a leaf");
+  ExternalReport report;
+  const ScratchDir dir(options.scratchDir);
+  // A generator is copied on the first pass and read back: it costs more to run than to read.
+  std::optional<CopiedStream> copied;
+  if (source.regenerates()) copied.emplace(source, dir.path / "input");
+  const ReadAheadStream ahead(copied ? static_cast<const TriangleStream&>(*copied) : source);
+  const PassStream in(ahead, options.progress, report);
+  const Bounds bounds = boundsPass(in, report.triangles);
+  requireFloatResolves(bounds, in.where());
+  if (report.triangles == 0) {  // nothing to split: the in-memory build's empty tree
+    SampleTree empty;
+    empty.params = params;
+    writeTree(empty, out);
+    report.storeBytes = storeBytes(empty);
+    return report;
+  }
+  CellOctree frame;
+  fitRootCube(frame, bounds);
+  const CellCensus census(in, frame, options.bucketTriangles);
+  Plan plan;
+  classify(census, CellKey{}, plan);
+  for (const CellKey& k : plan.buckets)
+    report.largestBucket = std::max(report.largestBucket, census.find(k)->count);
+  require(report.largestBucket <= options.bucketTriangles, "--mem-mb",
+          "a cell of the deepest level holds " + std::to_string(report.largestBucket) +
+              " triangles, more than a bucket may (" + std::to_string(options.bucketTriangles) +
+              "): raise it");
+  report.buckets = plan.buckets.size();
+  report.topCells = plan.tops;
+
+  ScratchArrays scratch(dir.path);
+  std::vector<BucketResult> buckets;
+  TriangleInput topInput;
+  std::vector<std::vector<uint32_t>> stayIndex(plan.tops);
+  {
+    SpillFile spill(dir.path / "spill", plan.buckets.size(), options.bufferTriangles);
+    const auto stays = writingPass(in, frame, census, plan, spill, options.topTriangles);
+    if (copied) copied->drop();  // the last pass
+    report.spillBytes = spill.bytesWritten();
+    const Stopwatch clock;
+    buckets = buildBuckets(plan, spill, frame, params, threads, options, topInput, scratch);
+    report.bucketSeconds = clock.seconds();
+    for (size_t c = 0; c < stays.size(); ++c)
+      for (const StreamTriangle& t : stays[c]) {
+        stayIndex[c].push_back(uint32_t(topInput.size()));
+        topInput.add(t.v[0], t.v[1], t.v[2], t.id, t.colour);
+      }
+    report.topTriangles = topInput.size();
+    requireTopFits(topInput.size(), options.topTriangles);
+  }
+
+  const Stopwatch clock;
+  TopTree top;
+  top.oct.origin = frame.origin;
+  top.oct.size = frame.size;
+  addTopNode(census, plan, CellKey{}, buckets, stayIndex, top);
+  const std::vector<double> topAreas = areasOf(topInput);
+  drawSamples(top.oct, topAreas, params.c, params.seed, threads);
+  TreeLayout layout(top.oct, topInput, topAreas, top.hidden);
+  SampleTree head;
+  layout.emit(0, head);
+
+  StoreMeta meta{params, frame.origin, frame.size, report.triangles, head.nodes.size(),
+                 head.ids.size()};
+  for (const auto& [k, u] : layout.splices()) {
+    meta.nodes += top.hidden[u].nodes;
+    meta.triangles += top.hidden[u].triangles;
+  }
+  require(meta.triangles == report.triangles, in.where(),
+          "internal: the external build stored " + std::to_string(meta.triangles) + " of " +
+              std::to_string(report.triangles) + " triangles");
+  report.nodes = meta.nodes;
+  const StoreAssembly assembly{head, layout.splices(), top, buckets, scratch};
+  writeAtomically(out, [&](const std::filesystem::path& tmp) {
+    StoreWriter w(tmp, meta);
+    assembly.write(w);
+    w.finish();
+  });
+  report.storeBytes = std::filesystem::file_size(out);
+  report.storeSeconds = clock.seconds();
+  return report;
+}
+
+}  // namespace lzb::sampletree

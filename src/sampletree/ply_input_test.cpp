@@ -1,0 +1,251 @@
+// A binary PLY file streamed (src/scene/ply_stream.hpp through MeshChunkStream) gives the
+// triangles the loaded scene streams (SceneStream of loadScene), bit for bit: polygons split,
+// vertex colours averaged, degenerate and non-finite faces dropped, far geometry recentred, in
+// either byte order; malformed files are refused naming the file, and files the loader reads
+// otherwise are left to it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "src/core/error.hpp"
+#include "src/sampletree/triangle_stream.hpp"
+#include "src/scene/load.hpp"
+#include "src/scene/ply_stream.hpp"
+
+namespace lzb::sampletree {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / "lzb_ply_input_test";
+  fs::create_directories(dir);
+  return dir / name;
+}
+
+// A PLY file written value by value in either byte order.
+struct PlyFile {
+  bool big = false;
+  std::string header, data;
+  template <class T>
+  void put(T v) {
+    char b[sizeof(T)];
+    std::memcpy(b, &v, sizeof(T));
+    if (big) std::reverse(b, b + sizeof(T));
+    data.append(b, sizeof(T));
+  }
+  fs::path write(const std::string& name) const {
+    const fs::path p = scratch(name);
+    std::ofstream(p, std::ios::binary)
+        << "ply\nformat " << (big ? "binary_big_endian" : "binary_little_endian") << " 1.0\n"
+        << header << "end_header\n"
+        << data;
+    return p;
+  }
+};
+
+// A jittered grid of coloured vertices (doubles, with properties to skip), faces of 1 to 6
+// vertices (lines, triangles, quads, concave pentagons, hexagons), repeated corners, a NaN vertex,
+// a colourless-property face list; `offset` moves it all (1e7: recentred by the loader).
+PlyFile polygonMesh(bool big, double offset, int n = 24) {
+  PlyFile f;
+  f.big = big;
+  const int vertices = n * n;
+  const int faces = (n - 1) * (n - 1);
+  f.header = "comment polygons\nelement vertex " + std::to_string(vertices) +
+             "\nproperty double x\nproperty double y\nproperty double z\nproperty float nx\n"
+             "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+             "property list uchar int extra\nelement face " +
+             std::to_string(faces) +
+             "\nproperty uchar flags\nproperty list uchar int vertex_indices\n"
+             "property list ushort float weights\nelement edge 2\nproperty int a\nproperty int b\n";
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const bool nan = i == 3 && j == 4;
+      f.put(nan ? std::numeric_limits<double>::quiet_NaN() : offset + i + jitter(rng));
+      f.put(offset + j + jitter(rng));
+      f.put(0.2 * std::sin(0.7 * i) + jitter(rng));
+      f.put(0.5f);
+      f.put(uint8_t(rng())), f.put(uint8_t(rng())), f.put(uint8_t(rng()));
+      f.put(uint8_t(i % 3));
+      for (int k = 0; k < i % 3; ++k) f.put(int32_t(k));
+    }
+  const auto at = [&](int i, int j) { return int32_t(j * n + i); };
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      std::vector<int32_t> poly = {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
+      switch ((i + 2 * j) % 7) {
+        case 0:
+          poly.resize(3);
+          break;  // triangle
+        case 1:
+          poly.resize(2);
+          break;  // a line
+        case 2:
+          poly.insert(poly.begin() + 2, at(i, j));
+          break;  // concave-ish pentagon
+        case 3:
+          poly = {at(i, j), at(i, j), at(i + 1, j + 1)};
+          break;  // degenerate
+        case 4:
+          poly.push_back(at(i, j)), poly.push_back(at(i + 1, j));
+          break;  // hexagon, repeats
+        default:
+          break;  // quad
+      }
+      f.put(uint8_t(7));
+      f.put(uint8_t(poly.size()));
+      for (int32_t v : poly) f.put(v);
+      f.put(uint16_t(1));
+      f.put(0.25f);
+    }
+  for (int e = 0; e < 4; ++e) f.put(int32_t(e));
+  return f;
+}
+
+std::vector<StreamTriangle> gather(const TriangleStream& s) {
+  std::vector<StreamTriangle> all;
+  s.forEach([&](std::span<const StreamTriangle> b) { all.insert(all.end(), b.begin(), b.end()); });
+  return all;
+}
+
+// The streamed file against the loaded one, triangle by triangle (in chunks of 50 triangles).
+void expectStreamedEqualsLoaded(const fs::path& file) {
+  std::string why;
+  const auto ply = PlyMeshStream::open(file, why);
+  ASSERT_TRUE(ply) << why;
+  const Scene scene = loadScene(file.string(), true);
+  const MeshChunkStream streamed(file.string(), ply->triangles(),
+                                 [&](const auto& out) { ply->forEachChunk(out, 50); },
+                                 MeshChunkStream::Kind::kFile, ply->placement());
+  const std::vector<StreamTriangle> a = gather(streamed), b = gather(SceneStream(scene));
+  EXPECT_EQ(ply->triangles(), scene.expandedTriangles());
+  EXPECT_EQ(ply->stats().degenerate, scene.stats.degenerate);
+  EXPECT_EQ(ply->stats().nonFinite, scene.stats.nonFinite);
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t t = 0; t < a.size(); ++t)
+    ASSERT_EQ(std::memcmp(&a[t], &b[t], sizeof(StreamTriangle)), 0) << "triangle " << t;
+}
+
+TEST(PlyInput, PolygonsAndColoursStreamAsLoaded) {
+  const fs::path file = polygonMesh(false, 0.0).write("polygons.ply");
+  expectStreamedEqualsLoaded(file);
+  std::string why;
+  const auto ply = PlyMeshStream::open(file, why);
+  EXPECT_GT(ply->stats().degenerate, 0u);  // lines and repeated corners
+  EXPECT_GT(ply->stats().nonFinite, 0u);   // the NaN vertex
+  EXPECT_GT(ply->triangles(), 700u);       // 529 faces, polygons split
+  EXPECT_EQ(ply->placement(), glm::dmat4(1.0));
+  std::vector<Rgba8> colours;
+  ply->forEachChunk(
+      [&](const Mesh& m) { colours.insert(colours.end(), m.colors.begin(), m.colors.end()); });
+  std::sort(colours.begin(), colours.end());
+  EXPECT_GT(std::unique(colours.begin(), colours.end()) - colours.begin(),
+            500);  // vertex colours averaged
+}
+
+TEST(PlyInput, BigEndianStreamsAsLoaded) {
+  expectStreamedEqualsLoaded(polygonMesh(true, 0.0).write("big.ply"));
+}
+
+TEST(PlyInput, FarGeometryIsRecentredAsLoaded) {
+  const fs::path file = polygonMesh(false, 1e7).write("far.ply");
+  expectStreamedEqualsLoaded(file);
+  std::string why;
+  EXPECT_NE(PlyMeshStream::open(file, why)->placement(), glm::dmat4(1.0));
+}
+
+// Float positions, float colours, uint counts and indices, no colour on some channels.
+TEST(PlyInput, OtherTypesStreamAsLoaded) {
+  PlyFile f;
+  f.header =
+      "element vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
+      "property float r\nproperty ushort blue\nelement face 3\n"
+      "property list uint uint vertex_index\n";
+  const float p[5][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5f, 0.5f, 1}};
+  for (int v = 0; v < 5; ++v) {
+    for (float c : p[v]) f.put(c);
+    f.put(0.1f * float(v)), f.put(uint16_t(9000 * v));
+  }
+  for (const std::vector<uint32_t>& face :
+       std::vector<std::vector<uint32_t>>{{0, 1, 2, 3}, {0, 1, 4}, {2, 3, 4}}) {
+    f.put(uint32_t(face.size()));
+    for (uint32_t v : face) f.put(v);
+  }
+  expectStreamedEqualsLoaded(f.write("types.ply"));
+}
+
+std::string refusal(const fs::path& file) {
+  try {
+    std::string why;
+    PlyMeshStream::open(file, why);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(PlyInput, MalformedFilesAreRefusedNamingTheFile) {
+  const PlyFile good = polygonMesh(false, 0.0, 6);
+  for (const size_t cut : {size_t(0), size_t(100), good.data.size() / 2, good.data.size() - 20,
+                           good.data.size() - 1}) {
+    PlyFile f = good;
+    f.data.resize(cut);
+    const fs::path file = f.write("cut.ply");
+    const std::string e = refusal(file);
+    EXPECT_NE(e.find(file.string()), std::string::npos) << cut << ": " << e;
+    EXPECT_NE(e.find("truncated"), std::string::npos) << cut << ": " << e;
+  }
+  PlyFile range;
+  range.header =
+      "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\n";
+  for (int k = 0; k < 9; ++k) range.put(float(k % 4 == 0));
+  range.put(uint8_t(3)), range.put(int32_t(0)), range.put(int32_t(1)), range.put(int32_t(3));
+  const fs::path out = range.write("range.ply");
+  EXPECT_NE(refusal(out).find(out.string() + ": malformed: face 0 uses vertex 3 of 3"),
+            std::string::npos)
+      << refusal(out);
+  PlyFile empty = range;
+  empty.data.resize(empty.data.size() - 13);
+  empty.put(uint8_t(0));
+  EXPECT_NE(refusal(empty.write("empty.ply")).find("face 0 has no vertices"), std::string::npos);
+  PlyFile header = range;
+  header.header += "property list float int bad\n";
+  EXPECT_NE(refusal(header.write("header.ply")).find("integer type"), std::string::npos);
+  EXPECT_NE(refusal(scratch("missing.ply")).find("file not found"), std::string::npos);
+}
+
+// What the loader (assimp 5.2) reads otherwise, or this reader does not stream, is left to it.
+TEST(PlyInput, FilesTheLoaderReadsOtherwiseAreLeftToIt) {
+  const auto why = [](const fs::path& file) {
+    std::string reason;
+    EXPECT_EQ(PlyMeshStream::open(file, reason), nullptr) << file;
+    return reason;
+  };
+  const fs::path ascii = scratch("ascii.ply");
+  std::ofstream(ascii)
+      << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+         "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+         "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  EXPECT_NE(why(ascii).find("ASCII"), std::string::npos);
+  PlyFile comment = polygonMesh(false, 0.0, 4);
+  comment.header.insert(comment.header.find("property double y"), "comment between properties\n");
+  EXPECT_NE(why(comment.write("comment.ply")).find("property line after"), std::string::npos);
+  PlyFile strips = polygonMesh(false, 0.0, 4);
+  strips.header += "element tristrips 0\nproperty list int int vertex_indices\n";
+  EXPECT_NE(why(strips.write("strips.ply")).find("strips"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace lzb::sampletree
