@@ -198,7 +198,7 @@ class Study:
 def plot():
     rows = common.read_csv(os.path.join(HERE, f"{NAME}.csv"))
     path = common.read_csv(os.path.join(HERE, f"{NAME}_path.csv"))
-    walk = [(int(float(r["frame"])), float(r["nodes_loaded"]), float(r["nodes_visited"]) / 100,
+    walk = [(int(float(r["frame"])), float(r["nodes_loaded"]), float(r["nodes_visited"]),
              float(r["seconds"]) * 1e3) for r in path]
     splat = [r for r in rows if r["part"] == "splat" and r["config"].startswith("splat")]
     scenes = sorted({r["scene"] for r in splat})
@@ -222,10 +222,10 @@ set multiplot layout 3,1 title "randomized sample tree at {W}x{H} ({common.CORES
 set grid
 set key outside right
 set xlabel 'frame of the {len(walk)}-frame circle (out of core, 16 MiB cache)'
-set ylabel 'nodes / frame'
-plot '{data}' index 0 using 1:2 with lines title 'nodes loaded', '' index 0 using 1:3 with lines title 'nodes visited / 100'
-set xlabel 'splat size d (far-off splatting)'
+set ylabel 'nodes / frame (log)'
 set logscale y
+plot '{data}' index 0 using 1:2 with lines title 'nodes loaded', '' index 0 using 1:3 with lines title 'nodes visited'
+set xlabel 'splat size d (far-off splatting)'
 set ylabel 'frame time (ms, log)'
 plot {splat_lines(2)}
 unset logscale y
