@@ -32,7 +32,6 @@ CellCensus::CellCensus(const TriangleStream& in, const CellOctree& frame, uint64
   for (int lo = 0; lo <= kMaxLevel; lo += kCensusLevels) {
     const int hi = std::min(lo + kCensusLevels - 1, kMaxLevel);
     pass(in, frame, lo, hi);
-    ++passes_;
     const bool open = std::any_of(stats_.begin(), stats_.end(), [&](const auto& e) {
       return e.first.level == hi && top(e.first);
     });

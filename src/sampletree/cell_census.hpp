@@ -45,14 +45,11 @@ class CellCensus {
   const CellStat* find(const CellKey& k) const;
   // Split in the in-memory build too: more than a bucket holds (more than a leaf), above kMaxLevel.
   bool top(const CellKey& k) const;
-  int passes() const { return passes_; }
-  size_t cells() const { return stats_.size(); }
 
  private:
   void pass(const TriangleStream& in, const CellOctree& frame, int lo, int hi);
   std::unordered_map<CellKey, CellStat, CellKeyHash> stats_;
   uint64_t bucketTriangles_;
-  int passes_ = 0;
 };
 
 template <class Visit>
