@@ -328,6 +328,12 @@ TEST(SampleTreeCli, BuildTreeRefusesBadInputAndWritesNothing) {
     EXPECT_FALSE(fs::exists(store)) << args;
     EXPECT_TRUE(fs::is_empty(dir)) << args;
   }
+  // Out of core into a folder that does not exist: refused, the folder not made.
+  const RunResult missing = runLzb("build-tree " + kScene + " --mem-mb 16 --quiet --out " +
+                                   (dir / "no" / "tree.lzbtree").string());
+  EXPECT_EQ(missing.status, 2) << missing.output;
+  EXPECT_NE(missing.output.find("--out"), std::string::npos) << missing.output;
+  EXPECT_TRUE(fs::is_empty(dir));
   // Rendering such a scene without a store refuses it too, before any output.
   const RunResult r = runLzb("render 'builtin:chessboard?n=4096' --method sampletree --quiet --out " +
                              (dir / "out").string());

@@ -107,6 +107,8 @@ int runExternalBuild(const BuildTreeArgs& a, const mpi::Group& g,
   if (!g.root()) return 0;  // one rank builds: the passes are bound by the input and the disk
   options.progress = !a.quiet;
   options.scratchDir = std::filesystem::absolute(a.out).parent_path();
+  require(std::filesystem::is_directory(options.scratchDir), "--out",
+          "the folder " + options.scratchDir.string() + " does not exist");
   const SceneInput in = openSceneStream(a.scene, a.quiet);
   Stopwatch clock;
   const sampletree::ExternalReport r =

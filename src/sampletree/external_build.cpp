@@ -55,7 +55,7 @@ struct ScratchDir {
   std::filesystem::path path;
   explicit ScratchDir(const std::filesystem::path& parent)
       : path(parent / (".lzb-build-tree-" + std::to_string(::getpid()))) {
-    std::filesystem::create_directories(path);
+    std::filesystem::create_directory(path);  // not its parents: a missing folder is an error
   }
   ~ScratchDir() {
     std::error_code ec;
