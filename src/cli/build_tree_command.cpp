@@ -67,12 +67,7 @@ bool openPlyStream(const std::string& spec, bool quiet, SceneInput& in) {
                    why.c_str());
     return false;
   }
-  const LoadStats& s = in.ply->stats();
-  if (!quiet && (s.degenerate > 0 || s.nonFinite > 0))
-    std::fprintf(stderr,
-                 "warning: %s: dropped %llu degenerate and %llu non-finite triangles (%llu kept)\n",
-                 spec.c_str(), (unsigned long long)s.degenerate, (unsigned long long)s.nonFinite,
-                 (unsigned long long)s.loaded);
+  if (!quiet) warnDropped(spec, in.ply->stats());
   const PlyMeshStream& ply = *in.ply;
   in.stream = std::make_unique<sampletree::MeshChunkStream>(
       spec, ply.triangles(),

@@ -106,7 +106,7 @@ TriangleInput toInput(const std::vector<StreamTriangle>& tris) {
   in.positions.reserve(3 * tris.size());
   in.ids.reserve(tris.size());
   in.colours.reserve(tris.size());
-  for (const StreamTriangle& t : tris) in.add(t.v[0], t.v[1], t.v[2], t.id, t.colour);
+  for (const StreamTriangle& t : tris) in.add(t);
   return in;
 }
 
@@ -146,7 +146,7 @@ BuiltBucket buildBucket(const CellKey& key, const std::vector<StreamTriangle>& t
   b.root.own.clear();
   for (uint32_t t : oct.nodes[0].own) {
     b.root.own.push_back(uint32_t(b.rootTriangles.size()));
-    b.rootTriangles.add(in.vertex(t, 0), in.vertex(t, 1), in.vertex(t, 2), in.ids[t], in.colours[t]);
+    b.rootTriangles.addFrom(in, t);
   }
   return b;
 }
@@ -161,10 +161,8 @@ BucketResult commitBucket(BuiltBucket&& b, TriangleInput& top, ScratchArrays& sc
   r.coloursAt = appendVector(scratch.colours, b.below.colours);
   r.root = std::move(b.root);
   for (uint32_t& t : r.root.own) {
-    const uint32_t k = t;
-    t = uint32_t(top.size());
-    top.add(b.rootTriangles.vertex(k, 0), b.rootTriangles.vertex(k, 1),
-            b.rootTriangles.vertex(k, 2), b.rootTriangles.ids[k], b.rootTriangles.colours[k]);
+    top.addFrom(b.rootTriangles, t);
+    t = uint32_t(top.size() - 1);
   }
   return r;
 }
@@ -403,7 +401,7 @@ ExternalReport buildTreeExternal(const TriangleStream& source, const TreeParams&
     for (size_t c = 0; c < stays.size(); ++c)
       for (const StreamTriangle& t : stays[c]) {
         stayIndex[c].push_back(uint32_t(topInput.size()));
-        topInput.add(t.v[0], t.v[1], t.v[2], t.id, t.colour);
+        topInput.add(t);
       }
     report.topTriangles = topInput.size();
     requireTopFits(topInput.size(), options.topTriangles);

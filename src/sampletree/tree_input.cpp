@@ -5,7 +5,6 @@
 #include <string>
 
 #include "src/core/error.hpp"
-#include "src/sampletree/triangle_stream.hpp"
 
 namespace lzb::sampletree {
 
@@ -50,7 +49,7 @@ TriangleInput gatherTriangles(const Scene& scene, uint64_t limit) {
   in.ids.reserve(n);
   in.colours.reserve(n);
   SceneStream(scene).forEach([&](std::span<const StreamTriangle> batch) {
-    for (const StreamTriangle& t : batch) in.add(t.v[0], t.v[1], t.v[2], t.id, t.colour);
+    for (const StreamTriangle& t : batch) in.add(t);
   });
   return in;
 }

@@ -11,6 +11,7 @@
 #include "src/core/bounds.hpp"
 #include "src/core/color.hpp"
 #include "src/core/scene.hpp"
+#include "src/sampletree/triangle_stream.hpp"
 
 namespace lzb::sampletree {
 
@@ -30,6 +31,11 @@ struct TriangleInput {
   const glm::vec3& vertex(size_t t, int k) const { return positions[3 * t + size_t(k)]; }
   double area(size_t t) const;
   void add(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, uint64_t id, Rgba8 colour);
+  void add(const StreamTriangle& t) { add(t.v[0], t.v[1], t.v[2], t.id, t.colour); }
+  // Appends triangle t of `from`.
+  void addFrom(const TriangleInput& from, size_t t) {
+    add(from.vertex(t, 0), from.vertex(t, 1), from.vertex(t, 2), from.ids[t], from.colours[t]);
+  }
 };
 
 // The tree stores world coordinates as floats: a scene whose float rounding exceeds this fraction

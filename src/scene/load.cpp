@@ -40,11 +40,14 @@ Scene loadScene(const std::string& spec, bool quiet) {
     scene.finalize();
   }
   require(scene.expandedTriangles() > 0, spec, "the scene has no triangles");
-  const LoadStats& s = scene.stats;
-  if (!quiet && (s.degenerate > 0 || s.nonFinite > 0))
+  if (!quiet) warnDropped(spec, scene.stats);
+  return scene;
+}
+
+void warnDropped(const std::string& spec, const LoadStats& s) {
+  if (s.degenerate > 0 || s.nonFinite > 0)
     std::cerr << "warning: " << spec << ": dropped " << s.degenerate << " degenerate and "
               << s.nonFinite << " non-finite triangles (" << s.loaded << " kept)\n";
-  return scene;
 }
 
 }  // namespace lzb
