@@ -11,6 +11,7 @@
 
 #include "src/core/error.hpp"
 #include "src/sampletree/external_build.hpp"
+#include "src/sampletree/test_input.hpp"
 #include "src/sampletree/tree_build.hpp"
 #include "src/sampletree/tree_store.hpp"
 #include "src/scene/builtin.hpp"
@@ -26,11 +27,6 @@ fs::path scratch(const std::string& name) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
-}
-
-std::vector<char> bytesOf(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 // The in-memory store of `scene`, and the external one of `stream` with buckets of at most
@@ -49,8 +45,8 @@ Pair buildBoth(const Scene& scene, const TriangleStream& stream, const TreeParam
   o.scratchDir = dir;
   Pair p;
   p.report = buildTreeExternal(stream, params, o, 2, (dir / "external.lzbtree").string());
-  p.inMemory = bytesOf(dir / "memory.lzbtree");
-  p.external = bytesOf(dir / "external.lzbtree");
+  p.inMemory = test::fileBytes(dir / "memory.lzbtree");
+  p.external = test::fileBytes(dir / "external.lzbtree");
   return p;
 }
 

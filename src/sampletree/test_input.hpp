@@ -1,7 +1,11 @@
 #pragma once
-// Tests' synthetic triangle sets for the sample tree.
+// Tests' synthetic triangle sets for the sample tree, and the bytes of the files they write.
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
+#include <vector>
 
 #include "src/sampletree/tree_input.hpp"
 
@@ -19,6 +23,12 @@ inline TriangleInput scatteredTriangles(size_t n, float maxSide, uint32_t seed =
     in.add(a, b, c, t, Rgba8(rng()) | 0xff000000u);
   }
   return in;
+}
+
+// A file's bytes (stores are compared and damaged byte by byte).
+inline std::vector<char> fileBytes(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 }  // namespace lzb::sampletree::test

@@ -25,11 +25,6 @@ fs::path tempStore(const std::string& name) {
   return dir / (name + ".lzbtree");
 }
 
-std::vector<char> readBytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 void writeBytes(const fs::path& p, const std::vector<char>& bytes) {
   std::ofstream(p, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
 }
@@ -83,7 +78,7 @@ TEST(TreeStore, RoundTrips) {
 TEST(TreeStore, EveryCorruptedBlockIsFound) {
   const fs::path p = tempStore("corrupt");
   writeTree(sampleTree(), p.string());
-  const std::vector<char> good = readBytes(p);
+  const std::vector<char> good = test::fileBytes(p);
   uint64_t payload = 0;
   std::memcpy(&payload, good.data() + 96, 8);  // the header's payload size
   const size_t blocks = size_t((payload + kStoreBlock - 1) / kStoreBlock);
@@ -104,7 +99,7 @@ TEST(TreeStore, EveryCorruptedBlockIsFound) {
 TEST(TreeStore, CorruptedHeaderOrTableIsFound) {
   const fs::path p = tempStore("header");
   writeTree(sampleTree(), p.string());
-  const std::vector<char> good = readBytes(p);
+  const std::vector<char> good = test::fileBytes(p);
   for (size_t at : {size_t(20), size_t(60), good.size() - 2}) {  // header counts, header c, table
     std::vector<char> bad = good;
     bad[at] = char(bad[at] ^ 0x01);
@@ -118,7 +113,7 @@ TEST(TreeStore, CorruptedHeaderOrTableIsFound) {
 TEST(TreeStore, TruncatedFilesAreFound) {
   const fs::path p = tempStore("truncated");
   writeTree(sampleTree(), p.string());
-  const std::vector<char> good = readBytes(p);
+  const std::vector<char> good = test::fileBytes(p);
   for (size_t keep : {size_t(0), size_t(64), size_t(kStoreHeaderBytes), good.size() / 2, good.size() - 1}) {
     writeBytes(p, std::vector<char>(good.begin(), good.begin() + long(keep)));
     const std::string e = readError(p);
@@ -130,7 +125,7 @@ TEST(TreeStore, TruncatedFilesAreFound) {
 TEST(TreeStore, WrongVersionAndForeignFilesAreRefused) {
   const fs::path p = tempStore("version");
   writeTree(sampleTree(), p.string());
-  std::vector<char> bytes = readBytes(p);
+  std::vector<char> bytes = test::fileBytes(p);
   const uint32_t version = kStoreVersion + 1;
   std::memcpy(bytes.data() + 8, &version, 4);
   writeBytes(p, bytes);
