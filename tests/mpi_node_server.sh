@@ -60,7 +60,7 @@ for rep in (two, three, prefetch):
             assert c(server, "served_nodes") == sum(c(r, "nodes_loaded") for r in render), b["ranks"]
             assert c(server, "served_bytes") == sum(c(r, "bytes_read") for r in render), b["ranks"]
             if f == 0:  # a fresh cache loads each drawn node once
-                assert c(server, "served_bytes") == 44 * c(b, "triangles_drawn"), b["ranks"]
+                assert c(server, "served_bytes") == 48 * c(b, "triangles_drawn"), b["ranks"]
         assert served >= loaded, ("loads the server did not serve", served, loaded)
     assert served > 0 and c(rep["frames"][0]["ranks"][-1], "file_bytes_read") > 0, "nothing served"
 print("  3 ranks, frame 0: triangles_drawn",

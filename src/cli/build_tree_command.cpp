@@ -69,9 +69,14 @@ bool openPlyStream(const std::string& spec, bool quiet, SceneInput& in) {
   }
   if (!quiet) warnDropped(spec, in.ply->stats());
   const PlyMeshStream& ply = *in.ply;
+  SceneOutline base;
+  base.source = spec;
   in.stream = std::make_unique<sampletree::MeshChunkStream>(
-      spec, ply.triangles(),
-      [&ply](const std::function<void(const Mesh&)>& out) { ply.forEachChunk(out); },
+      base, ply.triangles(),
+      [&ply](const std::function<void(const Mesh&)>& out) {
+        ply.forEachChunk(out);
+        return ply.stats();
+      },
       sampletree::MeshChunkStream::Kind::kFile, ply.placement());
   return true;
 }
@@ -81,8 +86,11 @@ SceneInput openSceneStream(const std::string& spec, bool quiet) {
   const std::string prefix = "builtin:";
   if (spec.rfind(prefix, 0) == 0)
     if (auto chunks = builtinChunks(spec.substr(prefix.size()))) {
+      SceneOutline base;
+      base.source = spec;
+      base.camera = chunks->camera;
       in.stream = std::make_unique<sampletree::MeshChunkStream>(
-          spec, chunks->triangles, std::move(chunks->generate),
+          base, chunks->triangles, std::move(chunks->generate),
           sampletree::MeshChunkStream::Kind::kGenerator);
       return in;
     }

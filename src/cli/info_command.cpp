@@ -62,7 +62,7 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   }
   const double octreeSeconds = clock.lap();
 
-  nlohmann::json info = sceneSummary(scene);
+  nlohmann::json info = sceneSummary(outlineOf(scene));
   info["instances"] = 0;
   for (const Node& n : scene.nodes) info["instances"] = info["instances"].get<uint64_t>() + n.instances.size();
   info["octrees"] = octrees;

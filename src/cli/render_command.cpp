@@ -177,7 +177,7 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
     if (g.root()) createOutput(a.out);
   });
 
-  Report report(a, plan.options, g, plan.scene, commandLine);
+  Report report(a, plan.options, g, plan.outline, plan.sceneLoaded, commandLine);
   report.setMethod(*renderer, judge.reference.get());
   report.setSetup(plan.loadSeconds, setupSeconds, methodSetup);
   if (judge.witness) report.setWitness(*judge.witness);

@@ -1,6 +1,8 @@
 #include "src/cli/render_setup.hpp"
 
 #include <cstdint>
+#include <cstdio>
+#include <optional>
 #include <filesystem>
 
 #include <unistd.h>
@@ -95,10 +97,32 @@ Camera RenderPlan::camera(int f) const {
   return Camera(spec, width, height, "camera (frame " + std::to_string(f) + ")");
 }
 
-void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan) {
-  Stopwatch loadClock;
+namespace {
+
+// The scene, or the outline standing for it when the method holds every triangle and no
+// reference needs them.
+void loadSceneOf(const RenderArgs& a, bool talk, RenderPlan& plan) {
+  std::optional<SceneOutline> stored;
+  if (a.reference.empty()) stored = methodNamed(a.method, "--method").storedOutline();
+  if (stored) {
+    if (talk && stored->source != a.scene)
+      std::fprintf(stderr, "note: %s is not read: the method's store holds the scene outline of %s\n",
+                   a.scene.c_str(), stored->source.c_str());
+    plan.scene = sceneFromOutline(*stored);
+    plan.outline = std::move(*stored);
+    plan.sceneLoaded = false;
+    return;
+  }
   plan.scene = loadScene(a.scene, !talk);
   require(plan.scene.expandedTriangles() > 0, a.scene, "the scene has no triangles");
+  plan.outline = outlineOf(plan.scene);
+}
+
+}  // namespace
+
+void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan) {
+  Stopwatch loadClock;
+  loadSceneOf(a, talk, plan);
   plan.loadSeconds = loadClock.seconds();
 
   plan.options.method = a.method;

@@ -8,6 +8,7 @@
 #include "src/core/camera.hpp"
 #include "src/core/renderer.hpp"
 #include "src/core/scene.hpp"
+#include "src/core/scene_outline.hpp"
 
 namespace lzb {
 
@@ -26,7 +27,9 @@ void createOutput(const std::string& out);
 
 // The loaded scene and what every frame of a run shares.
 struct RenderPlan {
-  Scene scene;
+  Scene scene;          // loaded, or standing for a method's stored outline (storedOutline())
+  SceneOutline outline;  // what the report says of the scene
+  bool sceneLoaded = true;
   RenderOptions options;
   int width = 0, height = 0;
   int frames = 1;
@@ -36,7 +39,9 @@ struct RenderPlan {
   Camera camera(int f) const;
 };
 
-// Loads a.scene into `plan` (in place: renderers keep a reference to the scene) and resolves the
+// Loads a.scene into `plan` (in place: renderers keep a reference to the scene) unless the method
+// holds the scene itself and no --reference needs it (the method's outline then stands for it),
+// and resolves the
 // threads (useThreads), image size, clip planes and fov; checks the first camera, the sub-sample
 // size and the frame memory. Throws InputError.
 void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan);

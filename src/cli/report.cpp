@@ -16,23 +16,25 @@ nlohmann::json vec(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
 }  // namespace
 
-nlohmann::json sceneSummary(const Scene& scene) {
+nlohmann::json sceneSummary(const SceneOutline& scene) {
   return {{"source", scene.source},
-          {"triangles_unique", scene.uniqueTriangles()},
-          {"triangles_expanded", scene.expandedTriangles()},
-          {"nodes", scene.nodes.size()},
+          {"triangles_unique", scene.uniqueTriangles},
+          {"triangles_expanded", scene.expandedTriangles},
+          {"nodes", scene.nodes},
           {"instance_depth", scene.instanceDepth},
           {"dropped_degenerate", scene.stats.degenerate},
           {"dropped_nonfinite", scene.stats.nonFinite},
-          {"bounds", {{"min", vec(scene.bounds().lo)}, {"max", vec(scene.bounds().hi)}}}};
+          {"bounds", {{"min", vec(scene.bounds.lo)}, {"max", vec(scene.bounds.hi)}}}};
 }
 
 Report::Report(const RenderArgs& a, const RenderOptions& options, const mpi::Group& g,
-               const Scene& scene, const std::string& commandLine)
+               const SceneOutline& scene, bool sceneLoaded, const std::string& commandLine)
     : out_(a.out) {
+  nlohmann::json summary = sceneSummary(scene);
+  summary["loaded"] = sceneLoaded;  // false: rendered from the method's store, the scene unread
   json_ = {{"lzb_version", "0.1"},
            {"command", commandLine},
-           {"scene", sceneSummary(scene)},
+           {"scene", summary},
            {"method", a.method},
            {"parameters",
             {{"seed", a.seed},

@@ -11,15 +11,16 @@
 #include "raycast/ray_witness.hpp"
 #include "src/cli/render_command.hpp"
 #include "src/core/renderer.hpp"
+#include "src/core/scene_outline.hpp"
 
 namespace lzb {
 
-nlohmann::json sceneSummary(const Scene& scene);
+nlohmann::json sceneSummary(const SceneOutline& scene);
 
 class Report {
  public:
-  Report(const RenderArgs& args, const RenderOptions& options, const mpi::Group& g, const Scene& scene,
-         const std::string& commandLine);
+  Report(const RenderArgs& args, const RenderOptions& options, const mpi::Group& g,
+         const SceneOutline& scene, bool sceneLoaded, const std::string& commandLine);
   void setMethod(const Renderer& method, const Renderer* reference);
   // Load and set-up wall times, and the method's own set-up figures (mpi::gatherStats).
   void setSetup(double loadSeconds, double setupSeconds, nlohmann::json methodSetup);

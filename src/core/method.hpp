@@ -5,6 +5,7 @@
 // into makeRegisteredMethods(), so the program and the conformance test see every method without
 // naming any.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "src/core/renderer.hpp"
+#include "src/core/scene_outline.hpp"
 
 namespace lzb {
 
@@ -41,6 +43,9 @@ class Method {
   virtual std::vector<PresetOption> preset(Quality /*q*/) const { return {}; }
   // The method's option values, for the report.
   virtual nlohmann::json parameters() const { return nlohmann::json::object(); }
+  // The scene's outline when the method renders it from a file of its own that holds every
+  // triangle (a sample tree store): the scene is then not loaded, sceneFromOutline stands for it.
+  virtual std::optional<SceneOutline> storedOutline() const { return std::nullopt; }
   // A renderer with the validated options; scene: finalized, outlives the renderer.
   virtual std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const = 0;
 };

@@ -33,6 +33,7 @@ class PassStream : public TriangleStream {
       : in_(in), progress_(progress), report_(report) {}
   const std::string& where() const override { return in_.where(); }
   uint64_t expected() const override { return in_.expected(); }
+  SceneOutline outline() const override { return in_.outline(); }
   void forEach(const TriangleSink& sink) const override {
     const int pass = ++report_.streamPasses;
     const Stopwatch clock;
@@ -368,6 +369,7 @@ ExternalReport buildTreeExternal(const TriangleStream& source, const TreeParams&
   if (report.triangles == 0) {  // nothing to split: the in-memory build's empty tree
     SampleTree empty;
     empty.params = params;
+    empty.outline = outlineText(in.outline());
     writeTree(empty, out);
     report.storeBytes = storeBytes(empty);
     return report;
@@ -428,10 +430,13 @@ ExternalReport buildTreeExternal(const TriangleStream& source, const TreeParams&
           "internal: the external build stored " + std::to_string(meta.triangles) + " of " +
               std::to_string(report.triangles) + " triangles");
   report.nodes = meta.nodes;
+  const std::string outline = outlineText(in.outline());
+  meta.outlineBytes = outline.size();
   const StoreAssembly assembly{head, layout.splices(), top, buckets, scratch};
   writeAtomically(out, [&](const std::filesystem::path& tmp) {
     StoreWriter w(tmp, meta);
     assembly.write(w);
+    w.append(outline.data(), outline.size());
     w.finish();
   });
   report.storeBytes = std::filesystem::file_size(out);

@@ -55,7 +55,10 @@ TEST(ExternalBuild, StreamedLandscapeGivesTheInMemoryStore) {
   const Scene scene = loadScene("builtin:" + spec, true);
   const auto chunks = builtinChunks(spec);
   ASSERT_TRUE(chunks.has_value());
-  const MeshChunkStream stream("builtin:" + spec, chunks->triangles, chunks->generate,
+  SceneOutline base;
+  base.source = "builtin:" + spec;
+  base.camera = chunks->camera;
+  const MeshChunkStream stream(base, chunks->triangles, chunks->generate,
                                MeshChunkStream::Kind::kGenerator);
   const fs::path dir = scratch("landscape");
   const Pair p = buildBoth(scene, stream, TreeParams{13.8, 3, 32}, 200, dir);

@@ -42,10 +42,13 @@ std::vector<NodePayload> NodeClient::readNodes(std::span<const uint32_t> nodes) 
     const size_t count = table_.tree.nodes[nodes[k]].triangleCount;
     out[k].positions.resize(3 * count);
     out[k].ids.resize(count);
+    out[k].colours.resize(count);
     std::memcpy(out[k].positions.data(), at, 3 * count * sizeof(glm::vec3));
     at += 3 * count * sizeof(glm::vec3);
     std::memcpy(out[k].ids.data(), at, count * sizeof(uint64_t));
     at += count * sizeof(uint64_t);
+    std::memcpy(out[k].colours.data(), at, count * sizeof(Rgba8));
+    at += count * sizeof(Rgba8);
   }
   return out;
 }

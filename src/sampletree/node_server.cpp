@@ -76,7 +76,7 @@ void NodeServer::serve() {
 }
 
 // Reads the requested nodes and sends them back in one message: each node's positions, then its
-// IDs, in the order asked.
+// IDs, then its colours, in the order asked.
 void NodeServer::answer(const MPI_Status& request) {
   int count = 0;
   LZB_MPI_CALL(MPI_Get_count(&request, MPI_UINT32_T, &count));
@@ -92,8 +92,10 @@ void NodeServer::answer(const MPI_Status& request) {
   for (const NodePayload& p : payloads) {
     const auto* pos = reinterpret_cast<const char*>(p.positions.data());
     const auto* ids = reinterpret_cast<const char*>(p.ids.data());
+    const auto* colours = reinterpret_cast<const char*>(p.colours.data());
     reply_.insert(reply_.end(), pos, pos + p.positions.size() * sizeof(glm::vec3));
     reply_.insert(reply_.end(), ids, ids + p.ids.size() * sizeof(uint64_t));
+    reply_.insert(reply_.end(), colours, colours + p.colours.size() * sizeof(Rgba8));
   }
   sendPolling(reply_.data(), reply_.size(), request.MPI_SOURCE, kNodePayload, link_.comm());
   std::lock_guard lock(mutex_);

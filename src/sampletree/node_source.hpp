@@ -13,15 +13,17 @@
 
 namespace lzb::sampletree {
 
-// What rendering needs of a node's triangles (colour is shaded from the IDs).
+// What rendering needs of a node's triangles: where they are, their IDs (the key buffer's) and
+// colours (the tree shades its own pixels, tree_shading.hpp).
 struct NodePayload {
   std::vector<glm::vec3> positions;  // 3 per triangle
   std::vector<uint64_t> ids;
+  std::vector<Rgba8> colours;
 };
 
-// Bytes of a node's payload as loaded: positions and IDs.
+// Bytes of a node's payload as loaded: positions, IDs and colours.
 inline uint64_t payloadBytes(const TreeNode& n) {
-  return uint64_t(n.triangleCount) * (format::kPositionBytes + format::kIdBytes);
+  return uint64_t(n.triangleCount) * (format::kPositionBytes + format::kIdBytes + format::kColourBytes);
 }
 
 class NodeSource {

@@ -204,7 +204,7 @@ TEST(OutOfCore, CountersAddUpAndASecondFrameLoadsNothing) {
   EXPECT_GT(first.count("nodes_loaded"), 10.0);
   EXPECT_EQ(first.count("nodes_loaded"), first.count("nodes_drawn"));
   EXPECT_EQ(first.count("bytes_read"), double(payload));
-  EXPECT_EQ(first.count("bytes_read"), 44.0 * first.count("triangles_drawn"));
+  EXPECT_EQ(first.count("bytes_read"), 48.0 * first.count("triangles_drawn"));
   EXPECT_GT(first.count("file_bytes_read"), 0.0);
   EXPECT_EQ(first.count("cache_hits"), 0.0);
   EXPECT_EQ(first.count("nodes_prefetched"), 0.0);

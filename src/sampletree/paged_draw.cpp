@@ -20,9 +20,11 @@ size_t batchEnd(const SampleTree& table, std::span<const uint32_t> nodes, size_t
 void stage(const std::vector<const NodePayload*>& payloads, SoupStaging& s) {
   s.positions.clear();
   s.ids.clear();
+  s.colours.clear();
   for (const NodePayload* p : payloads) {
     s.positions.insert(s.positions.end(), p->positions.begin(), p->positions.end());
     s.ids.insert(s.ids.end(), p->ids.begin(), p->ids.end());
+    s.colours.insert(s.colours.end(), p->colours.begin(), p->colours.end());
   }
 }
 
@@ -30,7 +32,7 @@ void stage(const std::vector<const NodePayload*>& payloads, SoupStaging& s) {
 
 uint64_t drawPaged(NodeCache& cache, const SampleTree& table, std::span<const uint32_t> nodes,
                    const Camera& camera, int threads, NativeRasterizer& raster,
-                   SoupStaging& staging, Framebuffer& fb) {
+                   SoupStaging& staging, TreeShading& shading, Framebuffer& fb) {
   uint64_t batches = 0;
   const std::vector<uint32_t> order = cache.residentFirst(nodes);  // keys: any order, one image
   nodes = order;
@@ -40,6 +42,7 @@ uint64_t drawPaged(NodeCache& cache, const SampleTree& table, std::span<const ui
     stage(cache.acquire(batch), staging);
     const SoupRange all{0, staging.ids.size()};
     raster.drawSoup(camera, TriangleSoup{staging.positions, staging.ids, {&all, 1}}, threads, fb);
+    shading.keepShown(fb, {staging.positions, staging.ids, staging.colours, {&all, 1}}, threads);
     cache.release(batch);
     begin = end;
   }

@@ -13,6 +13,7 @@
 #include "src/core/camera.hpp"
 #include "src/core/framebuffer.hpp"
 #include "src/sampletree/node_cache.hpp"
+#include "src/sampletree/tree_shading.hpp"
 #include "src/zbuffer/native_raster.hpp"
 
 namespace lzb::sampletree {
@@ -21,12 +22,14 @@ namespace lzb::sampletree {
 struct SoupStaging {
   std::vector<glm::vec3> positions;
   std::vector<uint64_t> ids;
+  std::vector<Rgba8> colours;
 };
 
-// nodes: each with triangles and its payload within the cache's budget.
+// nodes: each with triangles and its payload within the cache's budget. After each batch,
+// `shading` keeps the inputs of the batch's triangles fb shows (tree_shading.hpp).
 // Returns the number of batches drawn.
 uint64_t drawPaged(NodeCache& cache, const SampleTree& table, std::span<const uint32_t> nodes,
                    const Camera& camera, int threads, NativeRasterizer& raster,
-                   SoupStaging& staging, Framebuffer& fb);
+                   SoupStaging& staging, TreeShading& shading, Framebuffer& fb);
 
 }  // namespace lzb::sampletree

@@ -125,10 +125,17 @@ void expectStreamedEqualsLoaded(const fs::path& file) {
   const auto ply = PlyMeshStream::open(file, why);
   ASSERT_TRUE(ply) << why;
   const Scene scene = loadScene(file.string(), true);
-  const MeshChunkStream streamed(file.string(), ply->triangles(),
-                                 [&](const auto& out) { ply->forEachChunk(out, 50); },
+  SceneOutline base;
+  base.source = file.string();
+  const MeshChunkStream streamed(base, ply->triangles(),
+                                 [&](const auto& out) {
+                                   ply->forEachChunk(out, 50);
+                                   return ply->stats();
+                                 },
                                  MeshChunkStream::Kind::kFile, ply->placement());
   const std::vector<StreamTriangle> a = gather(streamed), b = gather(SceneStream(scene));
+  // What the store keeps for a render without the scene: the loaded scene's outline exactly.
+  EXPECT_EQ(outlineText(streamed.outline()), outlineText(outlineOf(scene)));
   EXPECT_EQ(ply->triangles(), scene.expandedTriangles());
   EXPECT_EQ(ply->stats().degenerate, scene.stats.degenerate);
   EXPECT_EQ(ply->stats().nonFinite, scene.stats.nonFinite);

@@ -5,6 +5,7 @@
 // cells' nodes lie together, in Morton order); a node's subtree is [index, subtreeEnd). Triangles
 // lie in node order: node u stores [firstTriangle, firstTriangle + triangleCount).
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -14,7 +15,7 @@
 
 namespace lzb::sampletree {
 
-// One node as it is kept in memory and in the store (little-endian, 72 bytes).
+// One node as it is kept in memory and in the store (little-endian, 88 bytes).
 struct TreeNode {
   uint64_t firstTriangle = 0;
   uint32_t triangleCount = 0;   // stored in this node
@@ -25,11 +26,13 @@ struct TreeNode {
   uint64_t subtreeTriangles = 0;  // |P(u)|: triangles of the cell when the octree was built
   uint64_t representativeId = 0;  // the triangle whose colour stands for the node (kNoId: none)
   float representativePoint[3] = {0, 0, 0};  // its centroid, where the node's splat is drawn
+  float representativeNormal[3] = {0, 0, 0};  // its shading normal (tree_shading.hpp)
   Rgba8 representativeColour = 0;
   uint32_t draws = 0;       // drawings made for this node's sample (0: a leaf)
   float subtreeArea = 0.0f;  // A(P(u))
+  uint32_t pad2 = 0;        // explicit, so the stored bytes are always the same
 };
-static_assert(sizeof(TreeNode) == 72, "the store keeps nodes byte for byte");
+static_assert(sizeof(TreeNode) == 88, "the store keeps nodes byte for byte");
 
 // Construction settings, kept in the store's header.
 struct TreeParams {
@@ -47,6 +50,7 @@ struct SampleTree {
   std::vector<glm::vec3> positions;  // world, 3 per triangle
   std::vector<uint64_t> ids;         // expanded triangle IDs
   std::vector<Rgba8> colours;
+  std::string outline;  // the scene's outline (src/core/scene_outline.hpp) as text
 
   uint64_t triangles() const { return ids.size(); }
   double cellSize(const TreeNode& n) const { return size / double(uint64_t(1) << n.level); }

@@ -8,6 +8,7 @@
 #include "src/core/system.hpp"
 #include "src/sampletree/node_link.hpp"
 #include "src/sampletree/sampletree_renderer.hpp"
+#include "src/sampletree/store_reader.hpp"
 #include "src/sampletree/tree_build.hpp"
 
 namespace lzb {
@@ -113,6 +114,12 @@ class SampleTreeMethod : public Method {
             {"cache_mb", st_.cacheMb},
             {"cache_levels", st_.cacheLevels},
             {"node_server", st_.nodeServer}};
+  }
+  // A store keeps the outline of the scene it was built from: no need to load the scene.
+  std::optional<SceneOutline> storedOutline() const override {
+    if (st_.treePath.empty()) return std::nullopt;
+    return parseOutline(sampletree::readStoreOutline(st_.treePath),
+                        st_.treePath + " (sample tree store)");
   }
   std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const override {
     return std::make_unique<sampletree::SampleTreeRenderer>(scene, options, st_);

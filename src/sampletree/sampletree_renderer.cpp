@@ -184,6 +184,8 @@ void SampleTreeRenderer::render(const Camera& camera, int frame, const WorkShare
   keys_.reset(camera.width(), camera.height(), scene_.expandedTriangles() > 0xffffffffull,
               options_.threads);
   const SplatSetup setup = SplatSetup::from(camera, st_.splat);
+  shading_.begin();
+  shading_.addRepresentatives(tree, splats);
   uint64_t splatted = 0;
   if (keys_.wide())
     splatted = st_.splat == 1 ? splatNodes<true, true>(tree, splats, camera, setup, keys_)
@@ -195,12 +197,16 @@ void SampleTreeRenderer::render(const Camera& camera, int frame, const WorkShare
   stats.addStage("splat", clock.lap());
 
   // The native z-buffer keeps the nearer (depth, ID) against the splats already in fb.
-  if (cache_)
+  if (cache_) {
     stats.addCount("draw_batches", double(drawPaged(*cache_, tree, drawn, camera, options_.threads,
-                                                    raster_, staging_, fb)));
-  else
+                                                    raster_, staging_, shading_, fb)));
+  } else {
     raster_.drawSoup(camera, TriangleSoup{tree_.positions, tree_.ids, ranges}, options_.threads, fb);
+    shading_.keepShown(fb, {tree_.positions, tree_.ids, tree_.colours, ranges}, options_.threads);
+  }
   stats.addStage("triangles", clock.lap());
+  shading_.shade(camera, scene_.light, fb, options_.threads);
+  stats.addStage("shade", clock.lap());
 
   stats.setShared("approximated_pixels",
                   double(approximatedPixels(

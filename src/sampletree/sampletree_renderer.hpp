@@ -7,7 +7,8 @@
 // (a store and cacheMb > 0) only the node table is resident: the drawn nodes' triangles come
 // from the node cache (node_cache.hpp, paged_draw.hpp), the same image as in core. With a node
 // server (nodeServer, >= 2 ranks) the last rank serves the payloads (node_server.hpp) and draws
-// nothing; the others split the frame among themselves as above and load through it.
+// nothing; the others split the frame among themselves as above and load through it. Colour comes
+// from the tree's own triangles (tree_shading.hpp), so `scene` may be an outline without any.
 #include <memory>
 #include <string>
 
@@ -21,6 +22,7 @@
 #include "src/sampletree/sample_tree.hpp"
 #include "src/sampletree/store_reader.hpp"
 #include "src/sampletree/traversal.hpp"
+#include "src/sampletree/tree_shading.hpp"
 #include "src/zbuffer/native_raster.hpp"
 
 namespace lzb::sampletree {
@@ -46,6 +48,8 @@ class SampleTreeRenderer : public Renderer {
   void render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
               FrameStats& stats) override;
   FrameStats setupStats() const override { return setup_; }
+  // Each rank shades its pixels from the tree's own triangles (tree_shading.hpp): no scene needed.
+  bool colourFromIds() const override { return false; }
   // The tree; out of core its nodes only (no triangles).
   const SampleTree& tree() const { return source_ ? source_->table() : tree_; }
   // Out of core: the node cache (tests wait for its prefetch); null in core.
@@ -71,6 +75,7 @@ class SampleTreeRenderer : public Renderer {
   const NodeSource* source_ = nullptr;  // out of core: the one of the above with the node table
   std::unique_ptr<NodeCache> cache_;    // after the sources: it stops before they close
   SoupStaging staging_;
+  TreeShading shading_;
   FrameStats setup_;
   NativeRasterizer raster_;
   KeyBuffer keys_;

@@ -11,8 +11,9 @@ namespace lzb::sampletree::format {
 
 static_assert(sizeof(Header) == kStoreHeaderBytes, "the header is 128 bytes");
 
-uint64_t payloadBytes(uint64_t nodes, uint64_t triangles) {
-  return nodes * sizeof(TreeNode) + triangles * (kPositionBytes + kIdBytes + kColourBytes);
+uint64_t payloadBytes(uint64_t nodes, uint64_t triangles, uint64_t outlineBytes) {
+  return nodes * sizeof(TreeNode) + triangles * (kPositionBytes + kIdBytes + kColourBytes) +
+         outlineBytes;
 }
 
 uint64_t blockCount(uint64_t payload) { return (payload + kStoreBlock - 1) / kStoreBlock; }
@@ -22,6 +23,7 @@ Sections sections(uint64_t nodes, uint64_t triangles) {
   s.positions = nodes * sizeof(TreeNode);
   s.ids = s.positions + triangles * kPositionBytes;
   s.colours = s.ids + triangles * kIdBytes;
+  s.outline = s.colours + triangles * kColourBytes;
   return s;
 }
 
@@ -36,8 +38,9 @@ void checkHeader(const Header& h, uint64_t fileBytes, const std::string& where) 
   require(h.blockSize == kStoreBlock, where, "block size " + std::to_string(h.blockSize) +
                                                  ", expected " + std::to_string(kStoreBlock));
   // Counts beyond the file's bytes would overflow the sizes below: refuse them first.
-  require(h.nodes <= fileBytes && h.triangles <= fileBytes, where, "the header's counts are absurd");
-  require(h.payloadBytes == payloadBytes(h.nodes, h.triangles), where,
+  require(h.nodes <= fileBytes && h.triangles <= fileBytes && h.outlineBytes <= kMaxOutlineBytes,
+          where, "the header's counts are absurd");
+  require(h.payloadBytes == payloadBytes(h.nodes, h.triangles, h.outlineBytes), where,
           "the header's sizes do not agree");
   const uint64_t expected = kStoreHeaderBytes + h.payloadBytes + 4 * blockCount(h.payloadBytes);
   require(fileBytes == expected, where,

@@ -23,7 +23,8 @@ struct Header {
   double origin[3];
   double size;
   uint64_t payloadBytes;
-  uint64_t reserved1[2];
+  uint64_t outlineBytes;  // the scene outline's text, the payload's last section
+  uint64_t reserved1;
   uint32_t tableCrc;
   uint32_t headerCrc;  // of the bytes before it
 };
@@ -32,12 +33,15 @@ struct Header {
 constexpr uint64_t kPositionBytes = 3 * sizeof(glm::vec3), kIdBytes = sizeof(uint64_t),
                    kColourBytes = sizeof(Rgba8);
 
-uint64_t payloadBytes(uint64_t nodes, uint64_t triangles);
+// The scene outline is kept to this size, so a damaged header cannot ask for more.
+constexpr uint64_t kMaxOutlineBytes = uint64_t(1) << 26;
+
+uint64_t payloadBytes(uint64_t nodes, uint64_t triangles, uint64_t outlineBytes);
 uint64_t blockCount(uint64_t payload);
 
 // Where each array starts in the payload.
 struct Sections {
-  uint64_t nodes = 0, positions = 0, ids = 0, colours = 0;
+  uint64_t nodes = 0, positions = 0, ids = 0, colours = 0, outline = 0;
 };
 Sections sections(uint64_t nodes, uint64_t triangles);
 

@@ -14,7 +14,8 @@
 
 namespace lzb::sampletree {
 
-StoreReader::StoreReader(const std::string& path) : where_(path + " (sample tree store)") {
+StoreReader::StoreReader(const std::string& path, Contents contents)
+    : where_(path + " (sample tree store)") {
   std::error_code ec;
   fileBytes_ = std::filesystem::file_size(path, ec);
   require(!ec, where_, "cannot be read: " + ec.message());
@@ -29,6 +30,9 @@ StoreReader::StoreReader(const std::string& path) : where_(path + " (sample tree
   readFile(kStoreHeaderBytes + header_.payloadBytes, crcs_.size() * 4, crcs_.data(), "the block table");
   require(crc32c(crcs_.data(), crcs_.size() * 4) == header_.tableCrc, where_,
           "the block table is corrupted: checksum mismatch");
+  table_.outline.resize(size_t(header_.outlineBytes));
+  readPayload(sections_.outline, header_.outlineBytes, table_.outline.data());
+  if (contents == Contents::kOutline) return;
   table_.params = {header_.c, header_.seed, header_.leafTriangles};
   table_.origin = {header_.origin[0], header_.origin[1], header_.origin[2]};
   table_.size = header_.size;
@@ -36,6 +40,10 @@ StoreReader::StoreReader(const std::string& path) : where_(path + " (sample tree
   table_.nodes.resize(size_t(header_.nodes));
   readPayload(sections_.nodes, header_.nodes * sizeof(TreeNode), table_.nodes.data());
   format::checkNodes(table_.nodes, header_.triangles, where_);
+}
+
+std::string readStoreOutline(const std::string& path) {
+  return StoreReader(path, StoreReader::Contents::kOutline).table().outline;
 }
 
 StoreReader::~StoreReader() {
@@ -47,10 +55,13 @@ NodePayload StoreReader::read(uint32_t index) {
   NodePayload p;
   p.positions.resize(3 * size_t(n.triangleCount));
   p.ids.resize(n.triangleCount);
+  p.colours.resize(n.triangleCount);
   readPayload(sections_.positions + n.firstTriangle * format::kPositionBytes,
               n.triangleCount * format::kPositionBytes, p.positions.data());
   readPayload(sections_.ids + n.firstTriangle * format::kIdBytes, n.triangleCount * format::kIdBytes,
               p.ids.data());
+  readPayload(sections_.colours + n.firstTriangle * format::kColourBytes,
+              n.triangleCount * format::kColourBytes, p.colours.data());
   return p;
 }
 

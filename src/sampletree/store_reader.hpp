@@ -14,14 +14,20 @@
 
 namespace lzb::sampletree {
 
+// The scene outline's text (src/core/scene_outline.hpp) of the store at `path`, checked like
+// everything the reader reads; InputError naming the store for any fault.
+std::string readStoreOutline(const std::string& path);
+
 class StoreReader : public NodeSource {
  public:
-  explicit StoreReader(const std::string& path);
+  // kOutline: the header, block table and scene outline only (no node table).
+  enum class Contents { kTable, kOutline };
+  explicit StoreReader(const std::string& path, Contents contents = Contents::kTable);
   ~StoreReader() override;
   StoreReader(const StoreReader&) = delete;
   StoreReader& operator=(const StoreReader&) = delete;
 
-  // The tree without triangles: parameters, root cube and every node.
+  // The tree without triangles: parameters, root cube, every node and the scene outline.
   const SampleTree& table() const override { return table_; }
   uint64_t triangles() const { return header_.triangles; }
   uint64_t fileBytes() const { return fileBytes_; }

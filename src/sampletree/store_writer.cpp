@@ -25,7 +25,8 @@ format::Header makeHeader(const StoreMeta& m) {
   h.leafTriangles = m.params.leafTriangles;
   for (int k = 0; k < 3; ++k) h.origin[k] = m.origin[k];
   h.size = m.size;
-  h.payloadBytes = format::payloadBytes(h.nodes, h.triangles);
+  h.outlineBytes = m.outlineBytes;
+  h.payloadBytes = format::payloadBytes(h.nodes, h.triangles, h.outlineBytes);
   return h;
 }
 
@@ -33,7 +34,7 @@ format::Header makeHeader(const StoreMeta& m) {
 
 StoreMeta metaOf(const SampleTree& tree) {
   return {tree.params, tree.origin, tree.size, tree.sceneTriangles, tree.nodes.size(),
-          tree.ids.size()};
+          tree.ids.size(), tree.outline.size()};
 }
 
 StoreWriter::StoreWriter(const std::filesystem::path& path, const StoreMeta& meta)

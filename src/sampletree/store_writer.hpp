@@ -18,6 +18,7 @@ struct StoreMeta {
   glm::dvec3 origin{0.0};
   double size = 1.0;
   uint64_t sceneTriangles = 0, nodes = 0, triangles = 0;
+  uint64_t outlineBytes = 0;
 };
 StoreMeta metaOf(const SampleTree& tree);
 
@@ -25,7 +26,7 @@ class StoreWriter {
  public:
   // Throws InputError naming path when it cannot be created.
   StoreWriter(const std::filesystem::path& path, const StoreMeta& meta);
-  // Payload bytes in order: nodes, positions, IDs, colours.
+  // Payload bytes in order: nodes, positions, IDs, colours, the outline.
   void append(const void* data, size_t n);
   // Writes the last block, the block table and the header; throws when the payload appended is
   // not the size the counts give, or the write failed.

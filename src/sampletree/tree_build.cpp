@@ -37,6 +37,7 @@ SampleTree buildTree(const Scene& scene, const TreeParams& params, int threads) 
   validateParams(params);
   SampleTree tree = buildTree(gatherTriangles(scene), params, threads);
   tree.sceneTriangles = scene.expandedTriangles();
+  tree.outline = outlineText(outlineOf(scene));
   return tree;
 }
 

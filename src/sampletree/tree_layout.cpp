@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "src/sampletree/representative.hpp"
+#include "src/sampletree/tree_shading.hpp"
 
 namespace lzb::sampletree {
 
@@ -46,8 +47,9 @@ void TreeLayout::emit(size_t u, SampleTree& out) {
     const uint32_t r = medianTriangle(in_, areas_, own);
     n.representativeId = in_.ids[r];
     n.representativeColour = in_.colours[r];
-    const glm::vec3 centroid = (in_.vertex(r, 0) + in_.vertex(r, 1) + in_.vertex(r, 2)) / 3.0f;
-    for (int k = 0; k < 3; ++k) n.representativePoint[k] = centroid[k];
+    const ShadingInputs s = shadingInputs(in_.vertex(r, 0), in_.vertex(r, 1), in_.vertex(r, 2));
+    for (int k = 0; k < 3; ++k) n.representativePoint[k] = s.point[k];
+    for (int k = 0; k < 3; ++k) n.representativeNormal[k] = s.normal[k];
   }
   out.nodes.push_back(n);
   if (!hidden_.empty() && hidden_[u].nodes > 0) {

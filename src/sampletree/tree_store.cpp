@@ -69,6 +69,7 @@ void writeStoreFile(const SampleTree& tree, const std::filesystem::path& path) {
   appendArray(w, tree.positions);
   appendArray(w, tree.ids);
   appendArray(w, tree.colours);
+  w.append(tree.outline.data(), tree.outline.size());
   w.finish();
 }
 
@@ -85,7 +86,7 @@ Header readHeader(std::ifstream& in, uint64_t fileBytes, const std::string& wher
 }  // namespace
 
 uint64_t storeBytes(const SampleTree& tree) {
-  const uint64_t payload = payloadBytes(tree.nodes.size(), tree.ids.size());
+  const uint64_t payload = payloadBytes(tree.nodes.size(), tree.ids.size(), tree.outline.size());
   return kStoreHeaderBytes + payload + 4 * blockCount(payload);
 }
 
@@ -117,11 +118,13 @@ SampleTree readTree(const std::string& path) {
   t.positions.resize(size_t(3 * h.triangles));
   t.ids.resize(size_t(h.triangles));
   t.colours.resize(size_t(h.triangles));
+  t.outline.resize(size_t(h.outlineBytes));
   BlockReader r(in, crcs, h.payloadBytes, where);
   r.read(t.nodes.data(), t.nodes.size() * sizeof(TreeNode));
   r.read(t.positions.data(), t.positions.size() * sizeof(glm::vec3));
   r.read(t.ids.data(), t.ids.size() * sizeof(uint64_t));
   r.read(t.colours.data(), t.colours.size() * sizeof(Rgba8));
+  r.read(t.outline.data(), t.outline.size());
   format::checkNodes(t.nodes, t.ids.size(), where);
   return t;
 }

@@ -3,9 +3,10 @@
 //
 //   header     128 bytes: magic "LZBSTREE", format version, block size, counts, construction
 //              parameters, the root cube, payload size, the block table's CRC, the header's CRC
-//   payload    the nodes in preorder (72 bytes each, so a subtree and neighbouring cells lie
+//   payload    the nodes in preorder (88 bytes each, so a subtree and neighbouring cells lie
 //              together), then the triangles in node order: positions (36 bytes), IDs (8),
-//              colours (4)
+//              colours (4), then the scene outline as JSON text (src/core/scene_outline.hpp:
+//              what a render needs of the scene, which is then not loaded)
 //   block table  CRC-32C of each kStoreBlock bytes of the payload
 //
 // Little-endian. readTree checks everything before it returns: a truncated file, a wrong magic
@@ -18,7 +19,7 @@
 
 namespace lzb::sampletree {
 
-constexpr uint32_t kStoreVersion = 1;
+constexpr uint32_t kStoreVersion = 2;
 constexpr uint32_t kStoreBlock = 64 * 1024;
 constexpr uint64_t kStoreHeaderBytes = 128;
 

@@ -5,6 +5,7 @@
 #include <deque>
 #include <exception>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -41,7 +42,10 @@ void SceneStream::forEach(const TriangleSink& sink) const {
 void MeshChunkStream::forEach(const TriangleSink& sink) const {
   uint64_t next = 0;
   std::vector<StreamTriangle> batch;
-  source_([&](const Mesh& mesh) {
+  const bool first = !passed_;
+  const LoadStats stats = source_([&](const Mesh& mesh) {
+    if (first)
+      for (const glm::vec3& p : mesh.positions) nodeBounds_.extend(glm::dvec3(p));
     batch.resize(mesh.size());
     for (size_t t = 0; t < mesh.size(); ++t) {
       for (int k = 0; k < 3; ++k) batch[t].v[k] = placed(placement_, mesh.vertex(t, k));
@@ -50,6 +54,21 @@ void MeshChunkStream::forEach(const TriangleSink& sink) const {
     }
     sink(batch);
   });
+  outline_.stats = stats;
+  outline_.uniqueTriangles = outline_.expandedTriangles = next;
+  passed_ = true;
+}
+
+// The loader keeps a node at the origin as the root itself and a recentred one as the root's one
+// instance, placed: the bounds, node count and depth follow the same rule.
+SceneOutline MeshChunkStream::outline() const {
+  if (!passed_) throw std::logic_error("MeshChunkStream: the outline needs a pass first");
+  SceneOutline o = outline_;
+  const bool placed = placement_ != glm::dmat4(1.0);
+  o.bounds = placed ? nodeBounds_.transformed(placement_) : nodeBounds_;
+  o.nodes = placed ? 2 : 1;
+  o.instanceDepth = placed ? 1 : 0;
+  return o;
 }
 
 namespace {

@@ -13,6 +13,7 @@
 
 #include "src/core/color.hpp"
 #include "src/core/scene.hpp"
+#include "src/core/scene_outline.hpp"
 #include "src/sampletree/scratch_file.hpp"
 
 namespace lzb::sampletree {
@@ -38,6 +39,9 @@ class TriangleStream {
   virtual void forEach(const TriangleSink& sink) const = 0;
   // True when every pass makes the triangles anew (a generator): a copy on disk reads faster.
   virtual bool regenerates() const { return false; }
+  // The outline of the scene the triangles make, as loadScene would give it (kept in the store so
+  // a render need not load the scene); valid after one pass.
+  virtual SceneOutline outline() const = 0;
 };
 
 // A loaded scene's expanded triangles, instances flattened.
@@ -47,6 +51,7 @@ class SceneStream : public TriangleStream {
   const std::string& where() const override { return scene_.source; }
   uint64_t expected() const override { return scene_.expandedTriangles(); }
   void forEach(const TriangleSink& sink) const override;
+  SceneOutline outline() const override { return outlineOf(scene_); }
 
  private:
   const Scene& scene_;
@@ -59,19 +64,24 @@ class SceneStream : public TriangleStream {
 // (src/scene/ply_stream.hpp) reads them again: that costs less disk than a 48-byte-a-triangle copy.
 class MeshChunkStream : public TriangleStream {
  public:
-  using Source = std::function<void(const std::function<void(const Mesh&)>&)>;
+  // Hands out the chunks, returns the triangles kept and dropped.
+  using Source = std::function<LoadStats(const std::function<void(const Mesh&)>&)>;
   enum class Kind { kGenerator, kFile };
-  MeshChunkStream(std::string where, uint64_t expected, Source source, Kind kind,
+  // base: the outline's source, light and camera (the counts and bounds come from a pass).
+  MeshChunkStream(SceneOutline base, uint64_t expected, Source source, Kind kind,
                   const glm::dmat4& placement = glm::dmat4(1.0))
-      : where_(std::move(where)), expected_(expected), source_(std::move(source)), kind_(kind),
+      : outline_(std::move(base)), expected_(expected), source_(std::move(source)), kind_(kind),
         placement_(placement) {}
-  const std::string& where() const override { return where_; }
+  const std::string& where() const override { return outline_.source; }
   uint64_t expected() const override { return expected_; }
   void forEach(const TriangleSink& sink) const override;
   bool regenerates() const override { return kind_ == Kind::kGenerator; }
+  SceneOutline outline() const override;
 
  private:
-  std::string where_;
+  mutable SceneOutline outline_;
+  mutable Bounds nodeBounds_;  // the node's own frame, as Scene::finalize bounds it
+  mutable bool passed_ = false;
   uint64_t expected_;
   Source source_;
   Kind kind_;
@@ -86,6 +96,7 @@ class ReadAheadStream : public TriangleStream {
   const std::string& where() const override { return in_.where(); }
   uint64_t expected() const override { return in_.expected(); }
   void forEach(const TriangleSink& sink) const override;
+  SceneOutline outline() const override { return in_.outline(); }
 
  private:
   const TriangleStream& in_;
@@ -101,6 +112,7 @@ class CopiedStream : public TriangleStream {
   const std::string& where() const override { return in_.where(); }
   uint64_t expected() const override { return in_.expected(); }
   void forEach(const TriangleSink& sink) const override;
+  SceneOutline outline() const override { return in_.outline(); }
   // Removes the copy (no pass may follow).
   void drop();
 

@@ -39,7 +39,9 @@ std::vector<std::string> builtinNames();
 // up through the chunks. generate() makes the same chunks on every call.
 struct BuiltinChunks {
   uint64_t triangles = 0;  // before degenerate ones are dropped
-  std::function<void(const std::function<void(const Mesh&)>&)> generate;
+  // Returns the triangles kept and dropped, as the loaded scene's stats count them.
+  std::function<LoadStats(const std::function<void(const Mesh&)>&)> generate;
+  std::optional<CameraSpec> camera;  // the loaded scene's
 };
 // Only landscape streams: nullopt for every other generator. Throws InputError for a bad spec.
 std::optional<BuiltinChunks> builtinChunks(const std::string& spec);

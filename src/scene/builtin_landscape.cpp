@@ -96,6 +96,15 @@ struct Landscape {
 
 constexpr int64_t kStreamObjects = 1 << 12;  // objects per streamed chunk (~100 K triangles, 5 MB)
 
+CameraSpec landscapeCamera(const Terrain& terrain) {
+  CameraSpec camera;  // low over one edge, looking across
+  camera.position = {0.0, 25.0, 0.5 * terrain.side + 10.0};
+  camera.lookAt = {0.0, 0.0, 0.0};
+  camera.fovyDegrees = 50.0;
+  camera.nearPlane = 0.5;
+  return camera;
+}
+
 }  // namespace
 
 Generated generateLandscape(Scene& scene, BuiltinParams& params) {
@@ -109,18 +118,13 @@ Generated generateLandscape(Scene& scene, BuiltinParams& params) {
   MeshBuilder builder(mesh, scene.stats);
   addTerrain(builder, land.terrain);
   for (int64_t k = 0; k < land.objects; ++k) addObject(builder, land.terrain, land.rng);
-  CameraSpec camera;  // low over one edge, looking across
-  camera.position = {0.0, 25.0, 0.5 * land.terrain.side + 10.0};
-  camera.lookAt = {0.0, 0.0, 0.0};
-  camera.fovyDegrees = 50.0;
-  camera.nearPlane = 0.5;
-  out.camera = camera;
+  out.camera = landscapeCamera(land.terrain);
   return out;
 }
 
 BuiltinChunks landscapeChunks(BuiltinParams& params) {
-  const uint64_t triangles = Landscape(params).triangles();
-  return {triangles, [spec = params.spec()](const std::function<void(const Mesh&)>& chunk) {
+  const Landscape shape(params);
+  return {shape.triangles(), [spec = params.spec()](const std::function<void(const Mesh&)>& chunk) {
             BuiltinParams again(spec);
             Landscape land(again);
             Mesh mesh;
@@ -135,7 +139,9 @@ BuiltinChunks landscapeChunks(BuiltinParams& params) {
               }
             }
             if (!mesh.empty()) chunk(mesh);
-          }};
+            return stats;
+          },
+          landscapeCamera(shape.terrain)};
 }
 
 }  // namespace lzb
