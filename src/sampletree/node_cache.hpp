@@ -1,5 +1,5 @@
 #pragma once
-// The node cache of section 6.2: node payloads (positions and IDs) loaded from a node source (the
+// The node cache of section 6.2: node payloads (positions, IDs, colours) loaded from a node source (the
 // store, or a node server on another rank) on demand by one background loader thread, within a
 // byte budget. The loader asks for several nodes at once (one message to a node server). A frame acquires the nodes it draws
 // (the loader loads the missing ones first; the frame waits for them) and may queue nodes to

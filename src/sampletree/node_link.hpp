@@ -19,7 +19,7 @@ namespace lzb::sampletree {
 
 enum NodeTag : int {
   kNodeRequest = 1,  // client -> server: node indices (uint32)
-  kNodePayload = 2,  // server -> client: their positions and IDs, node after node
+  kNodePayload = 2,  // server -> client: their positions, IDs and colours, node after node
   kFrameDrawn = 3,   // client -> server: this rank has drawn its share of the frame
   kGoodbye = 4,      // client -> server: no more requests from this rank
 };

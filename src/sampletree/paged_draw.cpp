@@ -6,13 +6,21 @@ namespace lzb::sampletree {
 
 namespace {
 
-// The longest run of nodes from `begin` whose payloads fit `budget` together.
+// The staging copy and the rasterizer's bins grow with a batch: past this many triangles a frame
+// is drawn in several, so its memory beyond the cache stays bounded whatever it draws.
+constexpr uint64_t kBatchTriangles = uint64_t(1) << 20;
+
+// The longest run of nodes from `begin` whose payloads fit `budget` together, of at most
+// kBatchTriangles triangles (one node at least).
 size_t batchEnd(const SampleTree& table, std::span<const uint32_t> nodes, size_t begin,
                 uint64_t budget) {
-  uint64_t bytes = 0;
+  uint64_t bytes = 0, triangles = 0;
   size_t end = begin;
-  while (end < nodes.size() && bytes + payloadBytes(table.nodes[nodes[end]]) <= budget)
-    bytes += payloadBytes(table.nodes[nodes[end++]]);
+  while (end < nodes.size() && bytes + payloadBytes(table.nodes[nodes[end]]) <= budget &&
+         (end == begin || triangles + table.nodes[nodes[end]].triangleCount <= kBatchTriangles)) {
+    bytes += payloadBytes(table.nodes[nodes[end]]);
+    triangles += table.nodes[nodes[end++]].triangleCount;
+  }
   if (end == begin) throw std::logic_error("drawPaged: a node larger than the cache budget");
   return end;
 }

@@ -1,8 +1,8 @@
 #pragma once
 // Drawing a frame's triangles from the node cache (out of core): in batches whose payloads fit
-// the cache's budget (one batch when the frame's nodes fit), each acquired (loading what is
-// missing, waiting for it), copied into one triangle soup, drawn by the native z-buffer and
-// released. The z-buffer keeps the nearer (depth, ID) at each pixel whatever the order, so any
+// the cache's budget and hold at most 2^20 triangles (one batch when a frame's nodes fit both),
+// each acquired (loading what is missing, waiting for it), copied into one triangle soup, drawn
+// by the native z-buffer and released. The z-buffer keeps the nearer (depth, ID) at each pixel whatever the order, so any
 // batching gives the image of one draw of them all, i.e. the in-core renderer's. The nodes the
 // cache holds are drawn first: a frame larger than the cache then reuses what the last one left
 // (in preorder every frame, each batch would evict the nodes the next frame starts with).

@@ -2,8 +2,7 @@
 // The representative colour of a node (section 4.4): the area-weighted median of its triangles'
 // colours (ordered by luminance, ties by ID), as the paper's implementation takes it. The median is
 // one of the triangles' own colours, so the node keeps that triangle: its ID is what the node's
-// splat writes, and shading from IDs (src/core/shading.hpp) then gives the splat that triangle's
-// colour, lit like the triangle, with no colour channel beside the key buffer.
+// splat writes, lit like the triangle (tree_shading.hpp: the node keeps its shading inputs).
 #include <cstdint>
 #include <span>
 

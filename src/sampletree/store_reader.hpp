@@ -33,7 +33,7 @@ class StoreReader : public NodeSource {
   uint64_t fileBytes() const { return fileBytes_; }
   const std::string& where() const { return where_; }
 
-  // Node `index`'s positions and IDs. Not thread-safe: one loader calls it.
+  // Node `index`'s positions, IDs and colours. Not thread-safe: one loader calls it.
   NodePayload read(uint32_t index);
   std::vector<NodePayload> readNodes(std::span<const uint32_t> nodes) override;
   // Bytes read from the file so far (whole blocks, each once per miss of the block memo).
