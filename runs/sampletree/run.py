@@ -6,7 +6,8 @@ one CSV:
   none instanced) in memory and out of core (--mem-mb 256), triangles per second, the build's peak
   resident memory (the process's, from wait4) and whether the two stores are byte-identical.
   --scale adds the 10^8-triangle landscape (4,194,304 objects) built with --mem-mb 2048, then
-  rendered out of core, and raycast on the same scene, each with its peak memory.
+  rendered out of core (node caches of 512 and 256 MiB; the scene is not loaded), and raycast on
+  the same scene, each with its peak memory.
 - path: an 800-frame circle over a landscape store read out of core (--cache-mb 16): per frame,
   nodes visited, loaded (the paper: at most ~100 per frame) and prefetched, bytes read, the wait
   for loads and the frame time (path.csv, one row per frame).
@@ -191,8 +192,9 @@ class Study:
         cmd, r = build(scene, store, 2048)
         self.add({"part": "scale", "scene": scene, "config": "external_2048mb", "ranks": 1, **r},
                  shown(cmd))
-        for config, args in (("sampletree_cache_512mb", ["--method", "sampletree", "--tree", store,
-                                                         "--cache-mb", "512"]),
+        tree = ["--method", "sampletree", "--tree", store]
+        for config, args in (("sampletree_cache_512mb", [*tree, "--cache-mb", "512"]),
+                             ("sampletree_cache_256mb", [*tree, "--cache-mb", "256"]),
                              ("raycast", ["--method", "raycast"])):
             cmd = [common.LZB, "render", scene, *args, "--frames", "5", "--width", str(W),
                    "--height", str(H), "--threads", str(common.CORES), "--quiet", "--out",
