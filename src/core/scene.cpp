@@ -126,6 +126,7 @@ std::optional<Scene::TriangleRef> Scene::resolve(uint64_t id) const {
     }
     // The last instance whose expanded list starts at or before id.
     const std::vector<uint64_t>& offsets = instanceOffsets[ref.node];
+    if (offsets.empty()) return std::nullopt;  // an outline's count without triangles
     const size_t k = size_t(std::upper_bound(offsets.begin(), offsets.end(), id) - offsets.begin()) - 1;
     id -= offsets[k];
     ref.transform = ref.transform * node.instances[k].transform;
