@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
 #include <memory>
 #include <optional>
@@ -167,8 +168,9 @@ BucketResult commitBucket(BuiltBucket&& b, TriangleInput& top, ScratchArrays& sc
   return r;
 }
 
-// Builds the buckets `threads` at a time (one thread each: a bucket's own sampling gains little
-// from more), committing them in order.
+// Builds the buckets on `threads` threads, one bucket each (a bucket's own sampling gains little
+// from more), committing them in order: a thread takes the next bucket once its last is
+// committed, so at most `threads` buckets are held and no thread waits for a whole group.
 std::vector<BucketResult> buildBuckets(const Plan& plan, const SpillFile& spill,
                                        const CellOctree& frame, const TreeParams& params,
                                        int threads, const ExternalOptions& options,
@@ -177,27 +179,30 @@ std::vector<BucketResult> buildBuckets(const Plan& plan, const SpillFile& spill,
   uint64_t total = 0;
   for (uint32_t b = 0; b < plan.buckets.size(); ++b) total += spill.count(b);
   Progress progress("build-tree: buckets", total, options.progress);
-  const size_t group = size_t(std::max(threads, 1));
-  for (size_t first = 0; first < plan.buckets.size(); first += group) {
-    const size_t n = std::min(group, plan.buckets.size() - first);
-    std::vector<BuiltBucket> built(n);
-    std::vector<std::exception_ptr> errors(n);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(int(n))
-    for (size_t k = 0; k < n; ++k) {
-      try {
-        const uint32_t b = uint32_t(first + k);
-        built[k] = buildBucket(plan.buckets[b], spill.read(b), frame, params, 1);
-        progress.add(spill.count(b));
+  std::exception_ptr error;
+  std::atomic<bool> failed{false};
+  const int64_t n = int64_t(plan.buckets.size());
+#pragma omp parallel for ordered schedule(dynamic, 1) num_threads(std::max(threads, 1))
+  for (int64_t b = 0; b < n; ++b) {
+    BuiltBucket built;
+    std::exception_ptr mine;
+    if (!failed) try {
+        built = buildBucket(plan.buckets[size_t(b)], spill.read(uint32_t(b)), frame, params, 1);
+        progress.add(spill.count(uint32_t(b)));
       } catch (...) {
-        errors[k] = std::current_exception();
+        mine = std::current_exception();
       }
-    }
-    for (size_t k = 0; k < n; ++k) {
-      if (errors[k]) std::rethrow_exception(errors[k]);
-      results.push_back(commitBucket(std::move(built[k]), top, scratch));
-      requireTopFits(top.size(), options.topTriangles);
-    }
+#pragma omp ordered
+    if (!failed) try {
+        if (mine) std::rethrow_exception(mine);
+        results.push_back(commitBucket(std::move(built), top, scratch));
+        requireTopFits(top.size(), options.topTriangles);
+      } catch (...) {
+        error = std::current_exception();
+        failed = true;
+      }
   }
+  if (error) std::rethrow_exception(error);
   return results;
 }
 
@@ -359,8 +364,10 @@ ExternalReport buildTreeExternal(const TriangleStream& source, const TreeParams&
   ExternalReport report;
   const ScratchDir dir(options.scratchDir);
   // A generator is copied on the first pass and read back: it costs more to run than to read.
+  // The generator gets a thread of its own on the first pass, so it overlaps the copy's writes.
+  const ReadAheadStream generated(source);
   std::optional<CopiedStream> copied;
-  if (source.regenerates()) copied.emplace(source, dir.path / "input");
+  if (source.regenerates()) copied.emplace(generated, dir.path / "input");
   const ReadAheadStream ahead(copied ? static_cast<const TriangleStream&>(*copied) : source);
   const PassStream in(ahead, options.progress, report);
   const Bounds bounds = boundsPass(in, report.triangles);
