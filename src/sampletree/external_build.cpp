@@ -98,8 +98,13 @@ struct ScratchArrays {
 };
 
 template <class T>
-uint64_t appendVector(ScratchFile& f, const std::vector<T>& v) {
-  return f.append(v.data(), v.size() * sizeof(T));
+uint64_t reserveFor(ScratchFile& f, const std::vector<T>& v) {
+  return f.reserve(v.size() * sizeof(T));
+}
+
+template <class T>
+void writeVector(const ScratchFile& f, uint64_t at, const std::vector<T>& v) {
+  f.write(at, v.data(), v.size() * sizeof(T));
 }
 
 TriangleInput toInput(const std::vector<StreamTriangle>& tris) {
@@ -152,20 +157,29 @@ BuiltBucket buildBucket(const CellKey& key, const std::vector<StreamTriangle>& t
   return b;
 }
 
-// Appends a built bucket to the scratch arrays and its root's triangles to the top levels' input.
-BucketResult commitBucket(BuiltBucket&& b, TriangleInput& top, ScratchArrays& scratch) {
+// Places a built bucket in the scratch arrays (the room set aside, in bucket order) and appends
+// its root's triangles to the top levels' input.
+BucketResult placeBucket(BuiltBucket& b, TriangleInput& top, ScratchArrays& scratch) {
   BucketResult r;
   r.below = {b.below.nodes.size(), b.below.ids.size()};
-  r.nodesAt = appendVector(scratch.nodes, b.below.nodes);
-  r.positionsAt = appendVector(scratch.positions, b.below.positions);
-  r.idsAt = appendVector(scratch.ids, b.below.ids);
-  r.coloursAt = appendVector(scratch.colours, b.below.colours);
+  r.nodesAt = reserveFor(scratch.nodes, b.below.nodes);
+  r.positionsAt = reserveFor(scratch.positions, b.below.positions);
+  r.idsAt = reserveFor(scratch.ids, b.below.ids);
+  r.coloursAt = reserveFor(scratch.colours, b.below.colours);
   r.root = std::move(b.root);
   for (uint32_t& t : r.root.own) {
     top.addFrom(b.rootTriangles, t);
     t = uint32_t(top.size() - 1);
   }
   return r;
+}
+
+// Writes a placed bucket's arrays where placeBucket set room aside (any thread).
+void writeBucket(const SampleTree& below, const BucketResult& at, const ScratchArrays& scratch) {
+  writeVector(scratch.nodes, at.nodesAt, below.nodes);
+  writeVector(scratch.positions, at.positionsAt, below.positions);
+  writeVector(scratch.ids, at.idsAt, below.ids);
+  writeVector(scratch.colours, at.coloursAt, below.colours);
 }
 
 // Builds the buckets on `threads` threads, one bucket each (a bucket's own sampling gains little
@@ -181,6 +195,11 @@ std::vector<BucketResult> buildBuckets(const Plan& plan, const SpillFile& spill,
   Progress progress("build-tree: buckets", total, options.progress);
   std::exception_ptr error;
   std::atomic<bool> failed{false};
+  const auto fail = [&](std::exception_ptr e) {
+#pragma omp critical(lzb_bucket_error)
+    if (!error) error = e;
+    failed = true;
+  };
   const int64_t n = int64_t(plan.buckets.size());
 #pragma omp parallel for ordered schedule(dynamic, 1) num_threads(std::max(threads, 1))
   for (int64_t b = 0; b < n; ++b) {
@@ -192,14 +211,22 @@ std::vector<BucketResult> buildBuckets(const Plan& plan, const SpillFile& spill,
       } catch (...) {
         mine = std::current_exception();
       }
+    BucketResult at;  // the offsets only: `results` may grow meanwhile
 #pragma omp ordered
     if (!failed) try {
         if (mine) std::rethrow_exception(mine);
-        results.push_back(commitBucket(std::move(built), top, scratch));
+        results.push_back(placeBucket(built, top, scratch));
+        at.nodesAt = results.back().nodesAt, at.positionsAt = results.back().positionsAt;
+        at.idsAt = results.back().idsAt, at.coloursAt = results.back().coloursAt;
         requireTopFits(top.size(), options.topTriangles);
       } catch (...) {
-        error = std::current_exception();
-        failed = true;
+        fail(std::current_exception());
+      }
+    // The writes overlap the next buckets' builds and placing.
+    if (!failed) try {
+        writeBucket(built.below, at, scratch);
+      } catch (...) {
+        fail(std::current_exception());
       }
   }
   if (error) std::rethrow_exception(error);
