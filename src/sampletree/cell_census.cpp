@@ -40,14 +40,15 @@ CellCensus::CellCensus(const TriangleStream& in, const CellOctree& frame, uint64
 }
 
 void CellCensus::pass(const TriangleStream& in, const CellOctree& frame, int lo, int hi) {
+  PathMemo<CellStat*> memo;  // map nodes stay put while others are inserted
   in.forEach([&](std::span<const StreamTriangle> batch) {
     for (const StreamTriangle& t : batch) {
       const double area = triangleArea(t.v[0], t.v[1], t.v[2]);
       descend(t, frame, [&](const CellKey& k) {
-        if (k.level < lo) return top(k);  // counted by an earlier pass: go on below top cells only
-        CellStat& s = stats_[k];
-        ++s.count;
-        s.area += area;
+        CellStat* s = memo.get(k, [&](const CellKey& key) { return &stats_[key]; });
+        if (k.level < lo) return top(k, *s);  // counted by an earlier pass: go on below top cells
+        ++s->count;
+        s->area += area;
         return int(k.level) < hi;
       });
     }
@@ -61,7 +62,11 @@ const CellStat* CellCensus::find(const CellKey& k) const {
 
 bool CellCensus::top(const CellKey& k) const {
   const CellStat* s = find(k);
-  return s && s->count > bucketTriangles_ && k.level < kMaxLevel;
+  return s && top(k, *s);
+}
+
+bool CellCensus::top(const CellKey& k, const CellStat& s) const {
+  return s.count > bucketTriangles_ && k.level < kMaxLevel;
 }
 
 }  // namespace lzb::sampletree

@@ -350,18 +350,27 @@ std::vector<std::vector<StreamTriangle>> writingPass(const TriangleStream& in,
                                                      SpillFile& spill, uint64_t limit) {
   std::vector<std::vector<StreamTriangle>> stays(plan.tops);
   uint64_t stayed = 0;
+  // Per cell: its top cell's index, else its bucket's with kBucket set.
+  constexpr uint64_t kBucket = uint64_t(1) << 32;
+  const auto where = [&](const CellKey& k) {
+    const auto top = plan.topOf.find(k);
+    return top != plan.topOf.end() ? uint64_t(top->second) : kBucket | plan.bucketOf.at(k);
+  };
+  PathMemo<bool> tops;
+  PathMemo<uint64_t> places;
   in.forEach([&](std::span<const StreamTriangle> batch) {
     for (const StreamTriangle& t : batch) {
       CellKey last;
       descend(t, frame, [&](const CellKey& k) {
         last = k;
-        return census.top(k);
+        return tops.get(k, [&](const CellKey& key) { return census.top(key); });
       });
-      if (const auto top = plan.topOf.find(last); top != plan.topOf.end()) {
-        stays[top->second].push_back(t);
-        requireTopFits(++stayed, limit);
+      const uint64_t place = places.get(last, where);
+      if (place & kBucket) {
+        spill.add(uint32_t(place), t);
       } else {
-        spill.add(plan.bucketOf.at(last), t);
+        stays[size_t(place)].push_back(t);
+        requireTopFits(++stayed, limit);
       }
     }
   });
