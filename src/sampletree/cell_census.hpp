@@ -21,6 +21,7 @@ struct CellKey {
     return level == o.level && cell[0] == o.cell[0] && cell[1] == o.cell[1] && cell[2] == o.cell[2];
   }
   CellKey child(int octant) const;
+  CellKey parent() const;  // of a cell below the root
 };
 struct CellKeyHash {
   size_t operator()(const CellKey& k) const;
@@ -58,11 +59,21 @@ struct CellStat {
   double area = 0.0;   // A(P(u)), summed in input order as the in-memory build sums it
 };
 
+// What a counting pass hands on: every triangle with the deepest cell it reached in that pass
+// (the external build spills it there, so the last counting pass is also the writing pass).
+class CensusSink {
+ public:
+  virtual ~CensusSink() = default;
+  virtual void beginPass() = 0;
+  virtual void add(const StreamTriangle& t, const CellKey& deepest) = 0;
+};
+
 class CellCensus {
  public:
   // Passes over `in` until every cell on a path is classified; a cell above bucketTriangles is a
-  // top cell (split, unless at kMaxLevel).
-  CellCensus(const TriangleStream& in, const CellOctree& frame, uint64_t bucketTriangles);
+  // top cell (split, unless at kMaxLevel). Each pass's triangles go to `sink` when given.
+  CellCensus(const TriangleStream& in, const CellOctree& frame, uint64_t bucketTriangles,
+             CensusSink* sink = nullptr);
   // The cell's statistics; nullptr when no triangle reaches it.
   const CellStat* find(const CellKey& k) const;
   // Split in the in-memory build too: more than a bucket holds (more than a leaf), above kMaxLevel.
@@ -73,6 +84,7 @@ class CellCensus {
   bool top(const CellKey& k, const CellStat& s) const;
   std::unordered_map<CellKey, CellStat, CellKeyHash> stats_;
   uint64_t bucketTriangles_;
+  CensusSink* sink_;
 };
 
 template <class Visit>

@@ -7,6 +7,7 @@
 #include <exception>
 #include <memory>
 #include <optional>
+#include <queue>
 #include <unordered_map>
 #include <vector>
 
@@ -182,10 +183,98 @@ void writeBucket(const SampleTree& below, const BucketResult& at, const ScratchA
   writeVector(scratch.colours, at.coloursAt, below.colours);
 }
 
+// The buckets' triangles in the spill: each bucket one or more of its partitions (a partition per
+// bucket from a writing pass; from the last counting pass, one per cell where triangles stopped).
+struct BucketReader {
+  const SpillFile& spill;
+  std::vector<std::vector<uint32_t>> parts;  // per bucket
+
+  uint64_t count(uint32_t b) const {
+    uint64_t n = 0;
+    for (uint32_t p : parts[b]) n += spill.count(p);
+    return n;
+  }
+  // The bucket's triangles in input order: its partitions merged by ID (the stream's order).
+  std::vector<StreamTriangle> read(uint32_t b) const {
+    if (parts[b].size() == 1) return spill.read(parts[b][0]);
+    std::vector<std::vector<StreamTriangle>> runs;
+    for (uint32_t p : parts[b]) runs.push_back(spill.read(p));
+    return mergeById(runs, count(b));
+  }
+  static std::vector<StreamTriangle> mergeById(const std::vector<std::vector<StreamTriangle>>& runs,
+                                               uint64_t total);
+};
+
+// A k-way merge that copies a run's triangles up to the next run's head at once (a run holds a
+// cell's triangles, mostly whole objects in a row).
+std::vector<StreamTriangle> BucketReader::mergeById(
+    const std::vector<std::vector<StreamTriangle>>& runs, uint64_t total) {
+  using Head = std::pair<uint64_t, size_t>;  // (ID, run)
+  std::priority_queue<Head, std::vector<Head>, std::greater<>> heads;
+  std::vector<size_t> at(runs.size(), 0);
+  for (size_t r = 0; r < runs.size(); ++r)
+    if (!runs[r].empty()) heads.emplace(runs[r][0].id, r);
+  std::vector<StreamTriangle> out;
+  out.reserve(size_t(total));
+  while (!heads.empty()) {
+    const size_t r = heads.top().second;
+    heads.pop();
+    const uint64_t next = heads.empty() ? UINT64_MAX : heads.top().first;
+    const std::vector<StreamTriangle>& run = runs[r];
+    size_t& k = at[r];
+    do out.push_back(run[k++]);
+    while (k < run.size() && run[k].id < next);
+    if (k < run.size()) heads.emplace(run[k].id, r);
+  }
+  return out;
+}
+
+// The counting passes' sink: each pass spills every triangle to the partition of the cell where
+// it stopped, replacing the last pass's spill; the last pass's serves as the writing pass when the
+// IDs came in increasing order (else bucket reads could not merge partitions back into order).
+class PartitionSpill : public CensusSink {
+ public:
+  PartitionSpill(std::filesystem::path path, uint64_t bufferTriangles)
+      : path_(std::move(path)), bufferTriangles_(bufferTriangles) {}
+  void beginPass() override {
+    spill_.reset();
+    spill_.emplace(path_, 0, bufferTriangles_);
+    partOf_.clear();
+    keys_.clear();
+    memo_ = {};
+    ordered_ = true;
+    lastId_.reset();
+  }
+  void add(const StreamTriangle& t, const CellKey& deepest) override {
+    if (lastId_ && t.id <= *lastId_) ordered_ = false;
+    lastId_ = t.id;
+    spill_->add(memo_.get(deepest, [&](const CellKey& k) { return partition(k); }), t);
+  }
+  bool ordered() const { return ordered_; }
+  void drop() { spill_.reset(); }
+  SpillFile& spill() { return *spill_; }
+  const std::vector<CellKey>& keys() const { return keys_; }  // per partition
+
+ private:
+  uint32_t partition(const CellKey& k) {
+    const auto [it, fresh] = partOf_.try_emplace(k, uint32_t(keys_.size()));
+    if (fresh) keys_.push_back(k);
+    return it->second;
+  }
+  std::filesystem::path path_;
+  uint64_t bufferTriangles_;
+  std::optional<SpillFile> spill_;
+  std::unordered_map<CellKey, uint32_t, CellKeyHash> partOf_;
+  std::vector<CellKey> keys_;
+  PathMemo<uint32_t> memo_;
+  bool ordered_ = true;
+  std::optional<uint64_t> lastId_;
+};
+
 // Builds the buckets on `threads` threads, one bucket each (a bucket's own sampling gains little
 // from more), committing them in order: a thread takes the next bucket once its last is
 // committed, so at most `threads` buckets are held and no thread waits for a whole group.
-std::vector<BucketResult> buildBuckets(const Plan& plan, const SpillFile& spill,
+std::vector<BucketResult> buildBuckets(const Plan& plan, const BucketReader& spill,
                                        const CellOctree& frame, const TreeParams& params,
                                        int threads, const ExternalOptions& options,
                                        TriangleInput& top, ScratchArrays& scratch) {
@@ -378,6 +467,32 @@ std::vector<std::vector<StreamTriangle>> writingPass(const TriangleStream& in,
   return stays;
 }
 
+// The last counting pass's spill as the writing pass's result: each partition is part of a
+// bucket (below the cell where its triangles stopped), or the triangles staying in a top cell.
+std::vector<std::vector<StreamTriangle>> partitionsToBuckets(
+    const CellCensus& census, const Plan& plan, PartitionSpill& partitions,
+    std::vector<std::vector<uint32_t>>& parts, uint64_t limit) {
+  SpillFile& spill = partitions.spill();
+  spill.flush();
+  parts.assign(plan.buckets.size(), {});
+  std::vector<std::pair<uint32_t, uint32_t>> stayParts;  // (top cell, partition)
+  uint64_t stayed = 0;
+  for (uint32_t p = 0; p < partitions.keys().size(); ++p) {
+    CellKey k = partitions.keys()[p];
+    if (census.top(k)) {
+      stayParts.emplace_back(plan.topOf.at(k), p);
+      stayed += spill.count(p);
+      continue;
+    }
+    while (k.level > 0 && !census.top(k.parent())) k = k.parent();
+    parts[plan.bucketOf.at(k)].push_back(p);
+  }
+  requireTopFits(stayed, limit);
+  std::vector<std::vector<StreamTriangle>> stays(plan.tops);
+  for (const auto& [c, p] : stayParts) stays[c] = spill.read(p);
+  return stays;
+}
+
 }  // namespace
 
 ExternalOptions optionsForMemory(uint64_t memBytes, const TreeParams& params, int threads) {
@@ -417,7 +532,9 @@ ExternalReport buildTreeExternal(const TriangleStream& source, const TreeParams&
   }
   CellOctree frame;
   fitRootCube(frame, bounds);
-  const CellCensus census(in, frame, options.bucketTriangles);
+  PartitionSpill partitions(dir.path / "spill", options.bufferTriangles);
+  const CellCensus census(in, frame, options.bucketTriangles, &partitions);
+  report.countingPasses = report.streamPasses - 1;
   Plan plan;
   classify(census, CellKey{}, plan);
   for (const CellKey& k : plan.buckets)
@@ -434,10 +551,20 @@ ExternalReport buildTreeExternal(const TriangleStream& source, const TreeParams&
   TriangleInput topInput;
   std::vector<std::vector<uint32_t>> stayIndex(plan.tops);
   {
-    SpillFile spill(dir.path / "spill", plan.buckets.size(), options.bufferTriangles);
-    const auto stays = writingPass(in, frame, census, plan, spill, options.topTriangles);
+    std::optional<SpillFile> written;  // a writing pass's, when the last counting pass's is not usable
+    std::vector<std::vector<uint32_t>> parts;
+    std::vector<std::vector<StreamTriangle>> stays;
+    if (partitions.ordered()) {
+      stays = partitionsToBuckets(census, plan, partitions, parts, options.topTriangles);
+    } else {
+      partitions.drop();
+      written.emplace(dir.path / "spill-written", plan.buckets.size(), options.bufferTriangles);
+      stays = writingPass(in, frame, census, plan, *written, options.topTriangles);
+      for (uint32_t b = 0; b < plan.buckets.size(); ++b) parts.push_back({b});
+    }
     if (copied) copied->drop();  // the last pass
-    report.spillBytes = spill.bytesWritten();
+    const BucketReader spill{written ? *written : partitions.spill(), std::move(parts)};
+    report.spillBytes = spill.spill.bytesWritten();
     const Stopwatch clock;
     buckets = buildBuckets(plan, spill, frame, params, threads, options, topInput, scratch);
     report.bucketSeconds = clock.seconds();
