@@ -568,6 +568,7 @@ ExternalReport buildTreeExternal(const TriangleStream& source, const TreeParams&
     const Stopwatch clock;
     buckets = buildBuckets(plan, spill, frame, params, threads, options, topInput, scratch);
     report.bucketSeconds = clock.seconds();
+    partitions.drop();  // the spill goes before the store is written, as the writing pass's did
     for (size_t c = 0; c < stays.size(); ++c)
       for (const StreamTriangle& t : stays[c]) {
         stayIndex[c].push_back(uint32_t(topInput.size()));
