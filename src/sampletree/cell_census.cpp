@@ -15,6 +15,13 @@ CellKey CellKey::child(int o) const {
   return k;
 }
 
+CellKey CellKey::parent() const {
+  CellKey k;
+  k.level = uint8_t(level - 1);
+  for (int i = 0; i < 3; ++i) k.cell[i] = cell[i] >> 1;
+  return k;
+}
+
 size_t CellKeyHash::operator()(const CellKey& k) const {
   // A marker bit above the level's 3 * level coordinate bits makes the packing unique (61 bits at
   // kMaxLevel); one mix, not one per coordinate (the census looks up every cell of every path).
@@ -27,8 +34,9 @@ size_t CellKeyHash::operator()(const CellKey& k) const {
 // Cells counted per pass: each pass descends kCensusLevels below the last pass's top cells.
 constexpr int kCensusLevels = 5;
 
-CellCensus::CellCensus(const TriangleStream& in, const CellOctree& frame, uint64_t bucketTriangles)
-    : bucketTriangles_(bucketTriangles) {
+CellCensus::CellCensus(const TriangleStream& in, const CellOctree& frame, uint64_t bucketTriangles,
+                       CensusSink* sink)
+    : bucketTriangles_(bucketTriangles), sink_(sink) {
   for (int lo = 0; lo <= kMaxLevel; lo += kCensusLevels) {
     const int hi = std::min(lo + kCensusLevels - 1, kMaxLevel);
     pass(in, frame, lo, hi);
@@ -40,16 +48,21 @@ CellCensus::CellCensus(const TriangleStream& in, const CellOctree& frame, uint64
 }
 
 void CellCensus::pass(const TriangleStream& in, const CellOctree& frame, int lo, int hi) {
+  PathMemo<CellStat*> memo;  // map nodes stay put while others are inserted
+  if (sink_) sink_->beginPass();
   in.forEach([&](std::span<const StreamTriangle> batch) {
     for (const StreamTriangle& t : batch) {
       const double area = triangleArea(t.v[0], t.v[1], t.v[2]);
+      CellKey deepest;
       descend(t, frame, [&](const CellKey& k) {
-        if (k.level < lo) return top(k);  // counted by an earlier pass: go on below top cells only
-        CellStat& s = stats_[k];
-        ++s.count;
-        s.area += area;
+        deepest = k;
+        CellStat* s = memo.get(k, [&](const CellKey& key) { return &stats_[key]; });
+        if (k.level < lo) return top(k, *s);  // counted by an earlier pass: go on below top cells
+        ++s->count;
+        s->area += area;
         return int(k.level) < hi;
       });
+      if (sink_) sink_->add(t, deepest);
     }
   });
 }
@@ -61,7 +74,11 @@ const CellStat* CellCensus::find(const CellKey& k) const {
 
 bool CellCensus::top(const CellKey& k) const {
   const CellStat* s = find(k);
-  return s && s->count > bucketTriangles_ && k.level < kMaxLevel;
+  return s && top(k, *s);
+}
+
+bool CellCensus::top(const CellKey& k, const CellStat& s) const {
+  return s.count > bucketTriangles_ && k.level < kMaxLevel;
 }
 
 }  // namespace lzb::sampletree

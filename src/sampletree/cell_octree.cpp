@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 
 #include "src/core/bounds.hpp"
 
@@ -14,14 +15,35 @@ struct Builder {
   const std::vector<double>& areas;
   uint32_t leafTriangles;
   CellOctree& tree;
+  std::vector<int8_t> octant;      // per triangle of the cell being split
+  std::vector<uint32_t> scratch;  // the cell's triangles regrouped by octant
+  std::vector<glm::dvec3> centroids;  // per input triangle: found once, used on every level
 
   int childOf(uint32_t t, const glm::dvec3& centre, double childSize) const {
-    return childOctant(glm::dvec3(in.vertex(t, 0)), glm::dvec3(in.vertex(t, 1)),
+    return childOctant(centroids[t], glm::dvec3(in.vertex(t, 0)), glm::dvec3(in.vertex(t, 1)),
                        glm::dvec3(in.vertex(t, 2)), centre, childSize);
   }
 
+  // Regroups tris stably as [staying | octant 0 | ... | octant 7] in place (one index array for
+  // the whole subtree instead of nine lists per cell); returns each group's start, then the end.
+  std::array<size_t, 10> split(std::span<uint32_t> tris, const glm::dvec3& centre,
+                               double childSize) {
+    octant.resize(tris.size());
+    std::array<size_t, 10> start{};
+    for (size_t k = 0; k < tris.size(); ++k) {
+      octant[k] = int8_t(childOf(tris[k], centre, childSize));
+      ++start[size_t(octant[k] + 2)];
+    }
+    for (size_t g = 1; g < start.size(); ++g) start[g] += start[g - 1];
+    scratch.resize(tris.size());
+    std::array<size_t, 10> next = start;
+    for (size_t k = 0; k < tris.size(); ++k) scratch[next[size_t(octant[k] + 1)]++] = tris[k];
+    std::copy(scratch.begin(), scratch.end(), tris.begin());
+    return start;
+  }
+
   // Appends the cell (level, cell) holding `tris` and its subtree; returns its index.
-  int32_t build(uint8_t level, const uint32_t (&cell)[3], std::vector<uint32_t>&& tris) {
+  int32_t build(uint8_t level, const uint32_t (&cell)[3], std::span<uint32_t> tris) {
     const int32_t index = int32_t(tree.nodes.size());
     tree.nodes.emplace_back();
     {
@@ -32,24 +54,20 @@ struct Builder {
       for (uint32_t t : tris) n.subtreeArea += areas[t];
     }
     if (tris.size() <= leafTriangles || level == kMaxLevel) {
-      tree.nodes[size_t(index)].own = std::move(tris);
+      tree.nodes[size_t(index)].own.assign(tris.begin(), tris.end());
       return index;
     }
     const glm::dvec3 centre = tree.cellCentre(tree.nodes[size_t(index)]);
     const double childSize = 0.5 * tree.size / double(uint64_t(1) << level);
-    std::array<std::vector<uint32_t>, 8> parts;
-    std::vector<uint32_t> own;
-    for (uint32_t t : tris) {
-      const int o = childOf(t, centre, childSize);
-      (o < 0 ? own : parts[size_t(o)]).push_back(t);
-    }
-    tris = {};
-    tree.nodes[size_t(index)].own = std::move(own);
+    const std::array<size_t, 10> at = split(tris, centre, childSize);
+    tree.nodes[size_t(index)].own.assign(tris.begin(), tris.begin() + ptrdiff_t(at[1]));
     for (int o = 0; o < 8; ++o) {
-      if (parts[size_t(o)].empty()) continue;
+      const size_t first = at[size_t(o) + 1], end = at[size_t(o) + 2];
+      const std::span<uint32_t> part = tris.subspan(first, end - first);
+      if (part.empty()) continue;
       const uint32_t sub[3] = {2 * cell[0] + uint32_t(o & 1), 2 * cell[1] + uint32_t(o >> 1 & 1),
                                2 * cell[2] + uint32_t(o >> 2 & 1)};
-      const int32_t c = build(uint8_t(level + 1), sub, std::move(parts[size_t(o)]));
+      const int32_t c = build(uint8_t(level + 1), sub, part);
       tree.nodes[size_t(index)].child[size_t(o)] = c;
     }
     return index;
@@ -58,19 +76,27 @@ struct Builder {
 
 }  // namespace
 
-int childOctant(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
-                const glm::dvec3& centre, double childSize) {
-  const glm::dvec3 centroid = (a + b + c) / 3.0;
+glm::dvec3 centroidOf(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  return (a + b + c) / 3.0;
+}
+
+int childOctant(const glm::dvec3& centroid, const glm::dvec3& a, const glm::dvec3& b,
+                const glm::dvec3& c, const glm::dvec3& centre, double childSize) {
   const int o = int(centroid.x >= centre.x) | int(centroid.y >= centre.y) << 1 |
                 int(centroid.z >= centre.z) << 2;
   const glm::dvec3 childCentre =
       centre + 0.5 * childSize * glm::dvec3(o & 1 ? 1 : -1, o & 2 ? 1 : -1, o & 4 ? 1 : -1);
   const double r2 = 0.75 * childSize * childSize;  // (half diagonal)^2
-  for (const glm::dvec3& v : {a, b, c}) {
+  const auto inside = [&](const glm::dvec3& v) {
     const glm::dvec3 d = v - childCentre;
-    if (glm::dot(d, d) > r2) return -1;
-  }
-  return o;
+    return !(glm::dot(d, d) > r2);  // not <=: a NaN distance does not reject, as before
+  };
+  return inside(a) && inside(b) && inside(c) ? o : -1;
+}
+
+int childOctant(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
+                const glm::dvec3& centre, double childSize) {
+  return childOctant(centroidOf(a, b, c), a, b, c, centre, childSize);
 }
 
 bool BuildNode::leaf() const {
@@ -92,7 +118,11 @@ void buildCellSubtree(CellOctree& frame, const TriangleInput& in, const std::vec
                       uint32_t leafTriangles, uint8_t level, const uint32_t (&cell)[3]) {
   std::vector<uint32_t> all(in.size());
   for (uint32_t t = 0; t < all.size(); ++t) all[t] = t;
-  Builder{in, areas, leafTriangles, frame}.build(level, cell, std::move(all));
+  Builder b{in, areas, leafTriangles, frame, {}, {}, std::vector<glm::dvec3>(in.size())};
+  for (uint32_t t = 0; t < all.size(); ++t)
+    b.centroids[t] = centroidOf(glm::dvec3(in.vertex(t, 0)), glm::dvec3(in.vertex(t, 1)),
+                                glm::dvec3(in.vertex(t, 2)));
+  b.build(level, cell, all);
 }
 
 CellOctree buildCellOctree(const TriangleInput& in, const std::vector<double>& areas,

@@ -47,6 +47,10 @@ void fitRootCube(CellOctree& tree, const Bounds& b);
 // construction.
 int childOctant(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,
                 const glm::dvec3& centre, double childSize);
+// The same with the triangle's centroid (centroidOf) given, for callers that reuse it per level.
+glm::dvec3 centroidOf(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c);
+int childOctant(const glm::dvec3& centroid, const glm::dvec3& a, const glm::dvec3& b,
+                const glm::dvec3& c, const glm::dvec3& centre, double childSize);
 
 // The root cube around every triangle, split until a cell holds at most leafTriangles (or
 // reaches kMaxLevel).

@@ -3,9 +3,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <exception>
 #include <memory>
 #include <optional>
+#include <queue>
 #include <unordered_map>
 #include <vector>
 
@@ -98,8 +100,13 @@ struct ScratchArrays {
 };
 
 template <class T>
-uint64_t appendVector(ScratchFile& f, const std::vector<T>& v) {
-  return f.append(v.data(), v.size() * sizeof(T));
+uint64_t reserveFor(ScratchFile& f, const std::vector<T>& v) {
+  return f.reserve(v.size() * sizeof(T));
+}
+
+template <class T>
+void writeVector(const ScratchFile& f, uint64_t at, const std::vector<T>& v) {
+  f.write(at, v.data(), v.size() * sizeof(T));
 }
 
 TriangleInput toInput(const std::vector<StreamTriangle>& tris) {
@@ -152,14 +159,15 @@ BuiltBucket buildBucket(const CellKey& key, const std::vector<StreamTriangle>& t
   return b;
 }
 
-// Appends a built bucket to the scratch arrays and its root's triangles to the top levels' input.
-BucketResult commitBucket(BuiltBucket&& b, TriangleInput& top, ScratchArrays& scratch) {
+// Places a built bucket in the scratch arrays (the room set aside, in bucket order) and appends
+// its root's triangles to the top levels' input.
+BucketResult placeBucket(BuiltBucket& b, TriangleInput& top, ScratchArrays& scratch) {
   BucketResult r;
   r.below = {b.below.nodes.size(), b.below.ids.size()};
-  r.nodesAt = appendVector(scratch.nodes, b.below.nodes);
-  r.positionsAt = appendVector(scratch.positions, b.below.positions);
-  r.idsAt = appendVector(scratch.ids, b.below.ids);
-  r.coloursAt = appendVector(scratch.colours, b.below.colours);
+  r.nodesAt = reserveFor(scratch.nodes, b.below.nodes);
+  r.positionsAt = reserveFor(scratch.positions, b.below.positions);
+  r.idsAt = reserveFor(scratch.ids, b.below.ids);
+  r.coloursAt = reserveFor(scratch.colours, b.below.colours);
   r.root = std::move(b.root);
   for (uint32_t& t : r.root.own) {
     top.addFrom(b.rootTriangles, t);
@@ -168,9 +176,106 @@ BucketResult commitBucket(BuiltBucket&& b, TriangleInput& top, ScratchArrays& sc
   return r;
 }
 
-// Builds the buckets `threads` at a time (one thread each: a bucket's own sampling gains little
-// from more), committing them in order.
-std::vector<BucketResult> buildBuckets(const Plan& plan, const SpillFile& spill,
+// Writes a placed bucket's arrays where placeBucket set room aside (any thread).
+void writeBucket(const SampleTree& below, const BucketResult& at, const ScratchArrays& scratch) {
+  writeVector(scratch.nodes, at.nodesAt, below.nodes);
+  writeVector(scratch.positions, at.positionsAt, below.positions);
+  writeVector(scratch.ids, at.idsAt, below.ids);
+  writeVector(scratch.colours, at.coloursAt, below.colours);
+}
+
+// The buckets' triangles in the spill: each bucket one or more of its partitions (a partition per
+// bucket from a writing pass; from the last counting pass, one per cell where triangles stopped).
+struct BucketReader {
+  const SpillFile& spill;
+  std::vector<std::vector<uint32_t>> parts;  // per bucket
+
+  uint64_t count(uint32_t b) const {
+    uint64_t n = 0;
+    for (uint32_t p : parts[b]) n += spill.count(p);
+    return n;
+  }
+  // The bucket's triangles in input order: its partitions merged by ID (the stream's order).
+  std::vector<StreamTriangle> read(uint32_t b) const {
+    if (parts[b].size() == 1) return spill.read(parts[b][0]);
+    std::vector<std::vector<StreamTriangle>> runs;
+    for (uint32_t p : parts[b]) runs.push_back(spill.read(p));
+    return mergeById(runs, count(b));
+  }
+  static std::vector<StreamTriangle> mergeById(const std::vector<std::vector<StreamTriangle>>& runs,
+                                               uint64_t total);
+};
+
+// A k-way merge that copies a run's triangles up to the next run's head at once (a run holds a
+// cell's triangles, mostly whole objects in a row).
+std::vector<StreamTriangle> BucketReader::mergeById(
+    const std::vector<std::vector<StreamTriangle>>& runs, uint64_t total) {
+  using Head = std::pair<uint64_t, size_t>;  // (ID, run)
+  std::priority_queue<Head, std::vector<Head>, std::greater<>> heads;
+  std::vector<size_t> at(runs.size(), 0);
+  for (size_t r = 0; r < runs.size(); ++r)
+    if (!runs[r].empty()) heads.emplace(runs[r][0].id, r);
+  std::vector<StreamTriangle> out;
+  out.reserve(size_t(total));
+  while (!heads.empty()) {
+    const size_t r = heads.top().second;
+    heads.pop();
+    const uint64_t next = heads.empty() ? UINT64_MAX : heads.top().first;
+    const std::vector<StreamTriangle>& run = runs[r];
+    size_t& k = at[r];
+    do out.push_back(run[k++]);
+    while (k < run.size() && run[k].id < next);
+    if (k < run.size()) heads.emplace(run[k].id, r);
+  }
+  return out;
+}
+
+// The counting passes' sink: each pass spills every triangle to the partition of the cell where
+// it stopped, replacing the last pass's spill; the last pass's serves as the writing pass when the
+// IDs came in increasing order (else bucket reads could not merge partitions back into order).
+class PartitionSpill : public CensusSink {
+ public:
+  PartitionSpill(std::filesystem::path path, uint64_t bufferTriangles)
+      : path_(std::move(path)), bufferTriangles_(bufferTriangles) {}
+  void beginPass() override {
+    spill_.reset();
+    spill_.emplace(path_, 0, bufferTriangles_);
+    partOf_.clear();
+    keys_.clear();
+    memo_ = {};
+    ordered_ = true;
+    lastId_.reset();
+  }
+  void add(const StreamTriangle& t, const CellKey& deepest) override {
+    if (lastId_ && t.id <= *lastId_) ordered_ = false;
+    lastId_ = t.id;
+    spill_->add(memo_.get(deepest, [&](const CellKey& k) { return partition(k); }), t);
+  }
+  bool ordered() const { return ordered_; }
+  void drop() { spill_.reset(); }
+  SpillFile& spill() { return *spill_; }
+  const std::vector<CellKey>& keys() const { return keys_; }  // per partition
+
+ private:
+  uint32_t partition(const CellKey& k) {
+    const auto [it, fresh] = partOf_.try_emplace(k, uint32_t(keys_.size()));
+    if (fresh) keys_.push_back(k);
+    return it->second;
+  }
+  std::filesystem::path path_;
+  uint64_t bufferTriangles_;
+  std::optional<SpillFile> spill_;
+  std::unordered_map<CellKey, uint32_t, CellKeyHash> partOf_;
+  std::vector<CellKey> keys_;
+  PathMemo<uint32_t> memo_;
+  bool ordered_ = true;
+  std::optional<uint64_t> lastId_;
+};
+
+// Builds the buckets on `threads` threads, one bucket each (a bucket's own sampling gains little
+// from more), committing them in order: a thread takes the next bucket once its last is
+// committed, so at most `threads` buckets are held and no thread waits for a whole group.
+std::vector<BucketResult> buildBuckets(const Plan& plan, const BucketReader& spill,
                                        const CellOctree& frame, const TreeParams& params,
                                        int threads, const ExternalOptions& options,
                                        TriangleInput& top, ScratchArrays& scratch) {
@@ -178,27 +283,43 @@ std::vector<BucketResult> buildBuckets(const Plan& plan, const SpillFile& spill,
   uint64_t total = 0;
   for (uint32_t b = 0; b < plan.buckets.size(); ++b) total += spill.count(b);
   Progress progress("build-tree: buckets", total, options.progress);
-  const size_t group = size_t(std::max(threads, 1));
-  for (size_t first = 0; first < plan.buckets.size(); first += group) {
-    const size_t n = std::min(group, plan.buckets.size() - first);
-    std::vector<BuiltBucket> built(n);
-    std::vector<std::exception_ptr> errors(n);
-#pragma omp parallel for schedule(dynamic, 1) num_threads(int(n))
-    for (size_t k = 0; k < n; ++k) {
-      try {
-        const uint32_t b = uint32_t(first + k);
-        built[k] = buildBucket(plan.buckets[b], spill.read(b), frame, params, 1);
-        progress.add(spill.count(b));
+  std::exception_ptr error;
+  std::atomic<bool> failed{false};
+  const auto fail = [&](std::exception_ptr e) {
+#pragma omp critical(lzb_bucket_error)
+    if (!error) error = e;
+    failed = true;
+  };
+  const int64_t n = int64_t(plan.buckets.size());
+#pragma omp parallel for ordered schedule(dynamic, 1) num_threads(std::max(threads, 1))
+  for (int64_t b = 0; b < n; ++b) {
+    BuiltBucket built;
+    std::exception_ptr mine;
+    if (!failed) try {
+        built = buildBucket(plan.buckets[size_t(b)], spill.read(uint32_t(b)), frame, params, 1);
+        progress.add(spill.count(uint32_t(b)));
       } catch (...) {
-        errors[k] = std::current_exception();
+        mine = std::current_exception();
       }
-    }
-    for (size_t k = 0; k < n; ++k) {
-      if (errors[k]) std::rethrow_exception(errors[k]);
-      results.push_back(commitBucket(std::move(built[k]), top, scratch));
-      requireTopFits(top.size(), options.topTriangles);
-    }
+    BucketResult at;  // the offsets only: `results` may grow meanwhile
+#pragma omp ordered
+    if (!failed) try {
+        if (mine) std::rethrow_exception(mine);
+        results.push_back(placeBucket(built, top, scratch));
+        at.nodesAt = results.back().nodesAt, at.positionsAt = results.back().positionsAt;
+        at.idsAt = results.back().idsAt, at.coloursAt = results.back().coloursAt;
+        requireTopFits(top.size(), options.topTriangles);
+      } catch (...) {
+        fail(std::current_exception());
+      }
+    // The writes overlap the next buckets' builds and placing.
+    if (!failed) try {
+        writeBucket(built.below, at, scratch);
+      } catch (...) {
+        fail(std::current_exception());
+      }
   }
+  if (error) std::rethrow_exception(error);
   return results;
 }
 
@@ -319,22 +440,57 @@ std::vector<std::vector<StreamTriangle>> writingPass(const TriangleStream& in,
                                                      SpillFile& spill, uint64_t limit) {
   std::vector<std::vector<StreamTriangle>> stays(plan.tops);
   uint64_t stayed = 0;
+  // Per cell: its top cell's index, else its bucket's with kBucket set.
+  constexpr uint64_t kBucket = uint64_t(1) << 32;
+  const auto where = [&](const CellKey& k) {
+    const auto top = plan.topOf.find(k);
+    return top != plan.topOf.end() ? uint64_t(top->second) : kBucket | plan.bucketOf.at(k);
+  };
+  PathMemo<bool> tops;
+  PathMemo<uint64_t> places;
   in.forEach([&](std::span<const StreamTriangle> batch) {
     for (const StreamTriangle& t : batch) {
       CellKey last;
       descend(t, frame, [&](const CellKey& k) {
         last = k;
-        return census.top(k);
+        return tops.get(k, [&](const CellKey& key) { return census.top(key); });
       });
-      if (const auto top = plan.topOf.find(last); top != plan.topOf.end()) {
-        stays[top->second].push_back(t);
-        requireTopFits(++stayed, limit);
+      const uint64_t place = places.get(last, where);
+      if (place & kBucket) {
+        spill.add(uint32_t(place), t);
       } else {
-        spill.add(plan.bucketOf.at(last), t);
+        stays[size_t(place)].push_back(t);
+        requireTopFits(++stayed, limit);
       }
     }
   });
   spill.flush();
+  return stays;
+}
+
+// The last counting pass's spill as the writing pass's result: each partition is part of a
+// bucket (below the cell where its triangles stopped), or the triangles staying in a top cell.
+std::vector<std::vector<StreamTriangle>> partitionsToBuckets(
+    const CellCensus& census, const Plan& plan, PartitionSpill& partitions,
+    std::vector<std::vector<uint32_t>>& parts, uint64_t limit) {
+  SpillFile& spill = partitions.spill();
+  spill.flush();
+  parts.assign(plan.buckets.size(), {});
+  std::vector<std::pair<uint32_t, uint32_t>> stayParts;  // (top cell, partition)
+  uint64_t stayed = 0;
+  for (uint32_t p = 0; p < partitions.keys().size(); ++p) {
+    CellKey k = partitions.keys()[p];
+    if (census.top(k)) {
+      stayParts.emplace_back(plan.topOf.at(k), p);
+      stayed += spill.count(p);
+      continue;
+    }
+    while (k.level > 0 && !census.top(k.parent())) k = k.parent();
+    parts[plan.bucketOf.at(k)].push_back(p);
+  }
+  requireTopFits(stayed, limit);
+  std::vector<std::vector<StreamTriangle>> stays(plan.tops);
+  for (const auto& [c, p] : stayParts) stays[c] = spill.read(p);
   return stays;
 }
 
@@ -360,8 +516,10 @@ ExternalReport buildTreeExternal(const TriangleStream& source, const TreeParams&
   ExternalReport report;
   const ScratchDir dir(options.scratchDir);
   // A generator is copied on the first pass and read back: it costs more to run than to read.
+  // The generator gets a thread of its own on the first pass, so it overlaps the copy's writes.
+  const ReadAheadStream generated(source);
   std::optional<CopiedStream> copied;
-  if (source.regenerates()) copied.emplace(source, dir.path / "input");
+  if (source.regenerates()) copied.emplace(generated, dir.path / "input");
   const ReadAheadStream ahead(copied ? static_cast<const TriangleStream&>(*copied) : source);
   const PassStream in(ahead, options.progress, report);
   const Bounds bounds = boundsPass(in, report.triangles);
@@ -376,7 +534,9 @@ ExternalReport buildTreeExternal(const TriangleStream& source, const TreeParams&
   }
   CellOctree frame;
   fitRootCube(frame, bounds);
-  const CellCensus census(in, frame, options.bucketTriangles);
+  PartitionSpill partitions(dir.path / "spill", options.bufferTriangles);
+  const CellCensus census(in, frame, options.bucketTriangles, &partitions);
+  report.countingPasses = report.streamPasses - 1;
   Plan plan;
   classify(census, CellKey{}, plan);
   for (const CellKey& k : plan.buckets)
@@ -393,13 +553,24 @@ ExternalReport buildTreeExternal(const TriangleStream& source, const TreeParams&
   TriangleInput topInput;
   std::vector<std::vector<uint32_t>> stayIndex(plan.tops);
   {
-    SpillFile spill(dir.path / "spill", plan.buckets.size(), options.bufferTriangles);
-    const auto stays = writingPass(in, frame, census, plan, spill, options.topTriangles);
+    std::optional<SpillFile> written;  // a writing pass's, when the last counting pass's is not usable
+    std::vector<std::vector<uint32_t>> parts;
+    std::vector<std::vector<StreamTriangle>> stays;
+    if (partitions.ordered()) {
+      stays = partitionsToBuckets(census, plan, partitions, parts, options.topTriangles);
+    } else {
+      partitions.drop();
+      written.emplace(dir.path / "spill-written", plan.buckets.size(), options.bufferTriangles);
+      stays = writingPass(in, frame, census, plan, *written, options.topTriangles);
+      for (uint32_t b = 0; b < plan.buckets.size(); ++b) parts.push_back({b});
+    }
     if (copied) copied->drop();  // the last pass
-    report.spillBytes = spill.bytesWritten();
+    const BucketReader spill{written ? *written : partitions.spill(), std::move(parts)};
+    report.spillBytes = spill.spill.bytesWritten();
     const Stopwatch clock;
     buckets = buildBuckets(plan, spill, frame, params, threads, options, topInput, scratch);
     report.bucketSeconds = clock.seconds();
+    partitions.drop();  // the spill goes before the store is written, as the writing pass's did
     for (size_t c = 0; c < stays.size(); ++c)
       for (const StreamTriangle& t : stays[c]) {
         stayIndex[c].push_back(uint32_t(topInput.size()));

@@ -38,7 +38,8 @@ struct ExternalReport {
   uint64_t triangles = 0, nodes = 0;
   uint64_t buckets = 0, topCells = 0, largestBucket = 0;
   uint64_t topTriangles = 0;  // triangles held by the top levels (their cells' borders)
-  int streamPasses = 0;       // reads of the input: bounds, counting, writing
+  int streamPasses = 0;       // reads of the input: bounds, counting, writing (when needed)
+  int countingPasses = 0;     // the last also spills, unless the input's IDs were out of order
   uint64_t spillBytes = 0, storeBytes = 0;
   // Wall seconds: reading the input (every pass: bounds, counting, writing to the scratch file),
   // building the buckets, sampling the top levels and writing the store.

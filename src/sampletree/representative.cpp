@@ -16,19 +16,26 @@ float luminance(Rgba8 c) {
 
 uint32_t medianTriangle(const TriangleInput& in, const std::vector<double>& areas,
                         std::span<const uint32_t> tris) {
-  std::vector<uint32_t> order(tris.begin(), tris.end());
-  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-    const float la = luminance(in.colours[a]), lb = luminance(in.colours[b]);
-    return la != lb ? la < lb : in.ids[a] < in.ids[b];
+  // Each triangle's luminance once, not per comparison.
+  struct Key {
+    float luminance;
+    uint64_t id;
+    uint32_t t;
+  };
+  std::vector<Key> order;
+  order.reserve(tris.size());
+  for (uint32_t t : tris) order.push_back({luminance(in.colours[t]), in.ids[t], t});
+  std::sort(order.begin(), order.end(), [](const Key& a, const Key& b) {
+    return a.luminance != b.luminance ? a.luminance < b.luminance : a.id < b.id;
   });
   double total = 0.0;
-  for (uint32_t t : order) total += areas[t];
+  for (const Key& k : order) total += areas[k.t];
   double sum = 0.0;
-  for (uint32_t t : order) {
-    sum += areas[t];
-    if (sum >= 0.5 * total) return t;
+  for (const Key& k : order) {
+    sum += areas[k.t];
+    if (sum >= 0.5 * total) return k.t;
   }
-  return order.back();
+  return order.back().t;
 }
 
 }  // namespace lzb::sampletree

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 #include "src/core/philox_stream.hpp"
 
@@ -10,51 +9,49 @@ namespace lzb::sampletree {
 
 namespace {
 
+// Node u's pool: the children's triangles in octant order, as prefix sums of their areas
+// (reused per thread: a bucket samples thousands of nodes).
+double poolPrefix(const CellOctree& tree, const BuildNode& node, const std::vector<double>& areas,
+                  std::vector<double>& prefix) {
+  prefix.clear();
+  double total = 0.0;
+  for (int32_t ch : node.child) {
+    if (ch == kNoChild) continue;
+    for (uint32_t t : tree.nodes[size_t(ch)].own) prefix.push_back(total += areas[t]);
+  }
+  return total;
+}
+
 // The drawings of node u from its children's triangles, moved into u.
 void sampleNode(CellOctree& tree, size_t u, const std::vector<double>& areas, double c,
                 const SampleStream& stream) {
   BuildNode& node = tree.nodes[u];
   const double side = tree.cellSize(node);
   node.draws = sampleDraws(sampleFactor(node.subtreeArea, side), c);
-  // The pool: the children's triangles in octant order, with prefix sums of their areas.
-  std::vector<std::pair<int32_t, uint32_t>> pool;  // (child, position in its list)
-  std::vector<double> prefix;
-  double total = 0.0;
-  for (int32_t ch : node.child) {
-    if (ch == kNoChild) continue;
-    const std::vector<uint32_t>& own = tree.nodes[size_t(ch)].own;
-    for (uint32_t k = 0; k < own.size(); ++k) {
-      total += areas[own[k]];
-      pool.emplace_back(ch, k);
-      prefix.push_back(total);
-    }
-  }
-  if (pool.empty() || !(total > 0.0)) return;
-  std::vector<char> chosen(pool.size(), 0);
+  thread_local std::vector<double> prefix;
+  thread_local std::vector<char> chosen;
+  const double total = poolPrefix(tree, node, areas, prefix);
+  if (prefix.empty() || !(total > 0.0)) return;
+  chosen.assign(prefix.size(), 0);
   const uint64_t key = nodeKey(node);
   for (uint32_t i = 0; i < node.draws; ++i) {
     const auto r = stream.draw(key, i);
     const double x = unit53(r.v[0], r.v[1]) * total;
-    const size_t k = std::min(pool.size() - 1, size_t(std::upper_bound(prefix.begin(),
-                                                                       prefix.end(), x) -
-                                                      prefix.begin()));
-    chosen[k] = 1;
+    const size_t k = size_t(std::upper_bound(prefix.begin(), prefix.end(), x) - prefix.begin());
+    chosen[std::min(prefix.size() - 1, k)] = 1;
   }
-  // Move what was drawn: into u, out of the children (their lists keep their order).
-  std::map<int32_t, std::vector<char>> taken;
-  for (size_t k = 0; k < pool.size(); ++k) {
-    if (!chosen[k]) continue;
-    const auto [ch, pos] = pool[k];
-    auto& flags = taken[ch];
-    flags.resize(tree.nodes[size_t(ch)].own.size(), 0);
-    flags[pos] = 1;
-    tree.nodes[u].own.push_back(tree.nodes[size_t(ch)].own[pos]);
-  }
-  for (auto& [ch, flags] : taken) {
+  // Move what was drawn, in pool order: into u, out of the children (their lists keep their order).
+  size_t k = 0;
+  for (int32_t ch : node.child) {
+    if (ch == kNoChild) continue;
     std::vector<uint32_t>& own = tree.nodes[size_t(ch)].own;
     size_t w = 0;
-    for (size_t k = 0; k < own.size(); ++k)
-      if (!flags[k]) own[w++] = own[k];
+    for (uint32_t t : own) {
+      if (chosen[k++])
+        node.own.push_back(t);
+      else
+        own[w++] = t;
+    }
     own.resize(w);
   }
 }

@@ -31,15 +31,24 @@ ScratchFile::~ScratchFile() {
 }
 
 uint64_t ScratchFile::append(const void* data, size_t n) {
-  const auto* p = static_cast<const char*>(data);
-  for (size_t done = 0; done < n;) {
-    const ssize_t k = ::pwrite(fd_, p + done, n - done, off_t(end_ + done));
-    if (k <= 0) fail(path_, "write failed");
-    done += size_t(k);
-  }
+  const uint64_t at = reserve(n);
+  write(at, data, n);
+  return at;
+}
+
+uint64_t ScratchFile::reserve(size_t n) {
   const uint64_t at = end_;
   end_ += n;
   return at;
+}
+
+void ScratchFile::write(uint64_t offset, const void* data, size_t n) const {
+  const auto* p = static_cast<const char*>(data);
+  for (size_t done = 0; done < n;) {
+    const ssize_t k = ::pwrite(fd_, p + done, n - done, off_t(offset + done));
+    if (k <= 0) fail(path_, "write failed");
+    done += size_t(k);
+  }
 }
 
 void ScratchFile::read(uint64_t offset, size_t n, void* out) const {

@@ -16,6 +16,10 @@ class ScratchFile {
 
   // Appends n bytes; returns the offset they start at.
   uint64_t append(const void* data, size_t n);
+  // Sets n bytes aside at the end for a later write (from any thread); returns their offset.
+  uint64_t reserve(size_t n);
+  // Writes n bytes at offset (inside what was appended or reserved).
+  void write(uint64_t offset, const void* data, size_t n) const;
   void read(uint64_t offset, size_t n, void* out) const;
   uint64_t size() const { return end_; }
 

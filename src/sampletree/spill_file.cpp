@@ -9,6 +9,11 @@ SpillFile::SpillFile(std::filesystem::path path, size_t buckets, uint64_t buffer
       buffers_(buckets), chunks_(buckets), counts_(buckets, 0) {}
 
 void SpillFile::add(uint32_t bucket, const StreamTriangle& t) {
+  if (bucket >= buffers_.size()) {
+    buffers_.resize(bucket + 1);
+    chunks_.resize(bucket + 1);
+    counts_.resize(bucket + 1, 0);
+  }
   buffers_[bucket].push_back(t);
   ++counts_[bucket];
   if (++buffered_ >= bufferTriangles_) flush();

@@ -14,6 +14,7 @@ namespace lzb::sampletree {
 class SpillFile {
  public:
   // bufferTriangles: how many triangles are held before a flush (the memory it may use / 48).
+  // Adding to a bucket past `buckets` adds buckets.
   SpillFile(std::filesystem::path path, size_t buckets, uint64_t bufferTriangles);
 
   void add(uint32_t bucket, const StreamTriangle& t);
@@ -22,6 +23,7 @@ class SpillFile {
   // The bucket's triangles in the order they were added.
   std::vector<StreamTriangle> read(uint32_t bucket) const;
   uint64_t count(uint32_t bucket) const { return counts_[bucket]; }
+  size_t buckets() const { return counts_.size(); }
   uint64_t bytesWritten() const { return file_.size(); }
 
  private:
