@@ -16,8 +16,8 @@ one CSV:
 - server: the same out-of-core walk on 1 rank, 2 ranks each reading the store, and 2 and 3 ranks
   with --node-server (one rank serving nodes to the others), where the option exists.
 
-Usage: python3 runs/sampletree/run.py [--quick] [--scale | --scale-only] [--plot-only] [--no-wait]
-       (--scale-only reruns the scale part alone, keeping the other parts' rows of the CSV)
+Usage: python3 runs/sampletree/run.py [--quick] [--scale | --only PART,...] [--plot-only] [--no-wait]
+       (--only build,scale reruns those parts alone, keeping the other parts' rows of the CSV)
        (from the repository root, after scripts/build.sh and scripts/fetch-test-meshes.sh build/data;
        plots need gnuplot)
 Writes runs/sampletree/sampletree.csv, path.csv and sampletree.png; --quick (small scenes, few
@@ -35,8 +35,8 @@ import common  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 QUICK = "--quick" in sys.argv
-SCALE_ONLY = "--scale-only" in sys.argv
-SCALE = "--scale" in sys.argv or SCALE_ONLY
+ONLY = sys.argv[sys.argv.index("--only") + 1].split(",") if "--only" in sys.argv else []
+SCALE = "--scale" in sys.argv or "scale" in ONLY
 NAME = "quick" if QUICK else "sampletree"
 W, H = (160, 120) if QUICK else (640, 480)
 FRAMES = 2 if QUICK else 10
@@ -114,13 +114,13 @@ class Study:
     def __init__(self):
         self.rows, self.commands = [], []
 
-    def keep_all_but_scale(self):
-        """The rows of the existing CSV (and their commands, in order) except the scale part's."""
+    def keep_all_but(self, parts):
+        """The rows of the existing CSV (and their commands, in order) except those of `parts`."""
         path = os.path.join(HERE, f"{NAME}.csv")
         with open(path) as f:
             commands = [line[2:].rstrip("\n") for line in f if line.startswith("# ")][1:]
         for row, cmd in zip(common.read_csv(path), commands):
-            if row["part"] != "scale":
+            if row["part"] not in parts:
                 self.rows.append(row)
                 self.commands.append(cmd)
 
@@ -250,10 +250,11 @@ unset multiplot
 
 
 if __name__ == "__main__":
-    if SCALE_ONLY:
+    if ONLY:
         s = Study()
-        s.keep_all_but_scale()
-        s.scale_part()
+        s.keep_all_but(ONLY)
+        for part in ONLY:
+            getattr(s, f"{part}_part")()
     elif "--plot-only" not in sys.argv:
         s = Study()
         s.build_part()

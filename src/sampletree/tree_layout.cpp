@@ -37,7 +37,9 @@ void TreeLayout::emit(size_t u, SampleTree& out) {
   n.triangleCount = uint32_t(b.own.size());
   n.representativeId = kNoId;
   std::vector<uint32_t> own = b.own;
-  std::sort(own.begin(), own.end(), [&](uint32_t x, uint32_t y) { return in_.ids[x] < in_.ids[y]; });
+  const auto byId = [&](uint32_t x, uint32_t y) { return in_.ids[x] < in_.ids[y]; };
+  // Leaves' lists come in input (ID) order already: only the sampled ones need sorting.
+  if (!std::is_sorted(own.begin(), own.end(), byId)) std::sort(own.begin(), own.end(), byId);
   for (uint32_t t : own) {
     for (int k = 0; k < 3; ++k) out.positions.push_back(in_.vertex(t, k));
     out.ids.push_back(in_.ids[t]);
