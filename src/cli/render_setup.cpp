@@ -2,8 +2,8 @@
 
 #include <cstdint>
 #include <cstdio>
-#include <optional>
 #include <filesystem>
+#include <optional>
 
 #include <unistd.h>
 

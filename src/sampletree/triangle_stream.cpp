@@ -64,10 +64,10 @@ void MeshChunkStream::forEach(const TriangleSink& sink) const {
 SceneOutline MeshChunkStream::outline() const {
   if (!passed_) throw std::logic_error("MeshChunkStream: the outline needs a pass first");
   SceneOutline o = outline_;
-  const bool placed = placement_ != glm::dmat4(1.0);
-  o.bounds = placed ? nodeBounds_.transformed(placement_) : nodeBounds_;
-  o.nodes = placed ? 2 : 1;
-  o.instanceDepth = placed ? 1 : 0;
+  const bool recentred = placement_ != glm::dmat4(1.0);
+  o.bounds = recentred ? nodeBounds_.transformed(placement_) : nodeBounds_;
+  o.nodes = recentred ? 2 : 1;
+  o.instanceDepth = recentred ? 1 : 0;
   return o;
 }
 
