@@ -227,8 +227,8 @@ TEST(SampleTreeCli, OutOfCoreRendersLikeTheStoreReadWhole) {
 
 // A store keeps the outline of its scene and the tree shades from its own triangles, so a render
 // from a store (here built out of core from a generator that was never loaded) does not load the
-// scene: the same frames as a run that loads it (for the raycast reference), the same scene in
-// the report, and the scene argument is not even read.
+// scene: the same frames as a run that loads it (for the raycast reference) and as the store read
+// whole, the same scene in the report.
 TEST(SampleTreeCli, StoreRendersWithoutLoadingTheScene) {
   const std::string scene = "'builtin:landscape?objects=800'";
   const fs::path dir = freshDir("sampletree_outline");
@@ -242,8 +242,7 @@ TEST(SampleTreeCli, StoreRendersWithoutLoadingTheScene) {
   const RunResult loaded = runLzb("render " + scene + render + (dir / "loaded").string() +
                                   " --cache-mb 1 --reference raycast");
   ASSERT_EQ(loaded.status, 0) << loaded.output;
-  const RunResult whole = runLzb("render " + (dir / "no-such.ply").string() + render +
-                                 (dir / "whole").string());
+  const RunResult whole = runLzb("render " + scene + render + (dir / "whole").string());
   ASSERT_EQ(whole.status, 0) << whole.output;
   for (const char* run : {"loaded", "whole"})
     for (const char* f : {"frame_0000.exr", "frame_0001.exr", "frame_0000.png", "frame_0001.png"})
@@ -331,8 +330,9 @@ TEST(SampleTreeCli, NodeServerRefusals) {
   EXPECT_NE(r.output.find("truncated"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("rank "), std::string::npos) << "one message for every rank: " << r.output;
   EXPECT_FALSE(fs::exists(out));
-  // Refusals after the server started serving (a cache below the largest node, on 3 ranks; a store
-  // of another scene): every render rank says goodbye, the server stops, no rank hangs.
+  // A refusal after the server started serving (a cache below the largest node, on 3 ranks): every
+  // render rank says goodbye, the server stops, no rank hangs; a store of another scene is refused
+  // on every rank before.
   const std::string three = "timeout 120 " + std::string(LZB_MPIEXEC) + " -n 3 --oversubscribe ";
   const RunResult small = runLzb(render + tree + " --cache-mb 0.0001 --out " + (dir / "small").string(), three);
   EXPECT_EQ(small.status, 2) << small.output;

@@ -1,7 +1,6 @@
 #include "src/cli/render_setup.hpp"
 
 #include <cstdint>
-#include <cstdio>
 #include <filesystem>
 #include <optional>
 
@@ -103,11 +102,8 @@ namespace {
 // reference needs them.
 void loadSceneOf(const RenderArgs& a, bool talk, RenderPlan& plan) {
   std::optional<SceneOutline> stored;
-  if (a.reference.empty()) stored = methodNamed(a.method, "--method").storedOutline();
+  if (a.reference.empty()) stored = methodNamed(a.method, "--method").storedOutline(a.scene);
   if (stored) {
-    if (talk && stored->source != a.scene)
-      std::fprintf(stderr, "note: %s is not read: the method's store holds the scene outline of %s\n",
-                   a.scene.c_str(), stored->source.c_str());
     plan.scene = sceneFromOutline(*stored);
     plan.outline = std::move(*stored);
     plan.sceneLoaded = false;

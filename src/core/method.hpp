@@ -43,9 +43,12 @@ class Method {
   virtual std::vector<PresetOption> preset(Quality /*q*/) const { return {}; }
   // The method's option values, for the report.
   virtual nlohmann::json parameters() const { return nlohmann::json::object(); }
-  // The scene's outline when the method renders it from a file of its own that holds every
+  // The outline of `scene` when the method renders it from a file of its own that holds every
   // triangle (a sample tree store): the scene is then not loaded, sceneFromOutline stands for it.
-  virtual std::optional<SceneOutline> storedOutline() const { return std::nullopt; }
+  // Throws InputError naming that file when it holds another scene.
+  virtual std::optional<SceneOutline> storedOutline(const std::string& /*scene*/) const {
+    return std::nullopt;
+  }
   // A renderer with the validated options; scene: finalized, outlives the renderer.
   virtual std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const = 0;
 };

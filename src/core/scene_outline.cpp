@@ -1,5 +1,7 @@
 #include "src/core/scene_outline.hpp"
 
+#include <filesystem>
+
 #include <nlohmann/json.hpp>
 
 #include "src/core/error.hpp"
@@ -95,6 +97,12 @@ SceneOutline parseOutline(const std::string& text, const std::string& where) {
   } catch (const json::exception& e) {
     throw InputError(where + ": the scene outline is not readable: " + e.what());
   }
+}
+
+bool namesSameScene(const std::string& a, const std::string& b) {
+  if (a == b) return true;
+  std::error_code ec;
+  return std::filesystem::equivalent(a, b, ec) && !ec;
 }
 
 Scene sceneFromOutline(const SceneOutline& o) {

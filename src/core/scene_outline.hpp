@@ -32,6 +32,9 @@ std::string outlineText(const SceneOutline& outline);
 // Throws InputError naming `where` for text that is not an outline.
 SceneOutline parseOutline(const std::string& text, const std::string& where);
 
+// Whether scene arguments a and b name one scene: the same text, or paths of one existing file.
+bool namesSameScene(const std::string& a, const std::string& b);
+
 // A scene without triangles standing for the outlined one: one empty node whose bounds and
 // expanded count are the outline's, so camera paths, clip planes and ID widths come out as for
 // the loaded scene. Only a method holding the triangles itself can render it.

@@ -1,6 +1,8 @@
 #include "src/core/scene_outline.hpp"
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include <gtest/gtest.h>
 
@@ -67,6 +69,19 @@ TEST(SceneOutline, SceneFromOutlineFramesLikeTheScene) {
   EXPECT_FALSE(o.resolve(0).has_value());
   EXPECT_EQ(o.keyframes.size(), 2u);
   EXPECT_EQ(o.light.ambient, s.light.ambient);
+}
+
+TEST(SceneOutline, SceneArgumentsNameOneSceneByTextOrFile) {
+  EXPECT_TRUE(namesSameScene("builtin:city?blocks=2", "builtin:city?blocks=2"));
+  EXPECT_FALSE(namesSameScene("builtin:city?blocks=2", "builtin:city?blocks=3"));
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "lzb_outline_names";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "a.ply") << "x";
+  std::ofstream(dir / "b.ply") << "x";
+  EXPECT_TRUE(namesSameScene((dir / "a.ply").string(), (dir / "." / "a.ply").string()));
+  EXPECT_FALSE(namesSameScene((dir / "a.ply").string(), (dir / "b.ply").string()));
+  EXPECT_FALSE(namesSameScene((dir / "gone.ply").string(), (dir / "." / "gone.ply").string()));
+  std::filesystem::remove_all(dir);
 }
 
 TEST(SceneOutline, MalformedTextIsAnInputErrorNamingWhere) {

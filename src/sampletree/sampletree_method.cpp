@@ -116,10 +116,13 @@ class SampleTreeMethod : public Method {
             {"node_server", st_.nodeServer}};
   }
   // A store keeps the outline of the scene it was built from: no need to load the scene.
-  std::optional<SceneOutline> storedOutline() const override {
+  std::optional<SceneOutline> storedOutline(const std::string& scene) const override {
     if (st_.treePath.empty()) return std::nullopt;
-    return parseOutline(sampletree::readStoreOutline(st_.treePath),
-                        st_.treePath + " (sample tree store)");
+    const std::string where = st_.treePath + " (sample tree store)";
+    SceneOutline o = parseOutline(sampletree::readStoreOutline(st_.treePath), where);
+    require(namesSameScene(scene, o.source), where,
+            "built from " + o.source + ", not from " + scene + " (name that scene to render it)");
+    return o;
   }
   std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const override {
     return std::make_unique<sampletree::SampleTreeRenderer>(scene, options, st_);
