@@ -16,7 +16,7 @@ namespace {
 // A bit per hash of an ID: most drawn triangles are not wanted, and one bit test says so.
 class IdFilter {
  public:
-  explicit IdFilter(std::span<const uint64_t> ids) : bits_(kWords, 0) {
+  explicit IdFilter(const std::unordered_set<uint64_t>& ids) : bits_(kWords, 0) {
     for (uint64_t id : ids) bits_[slot(id) >> 6] |= uint64_t(1) << (slot(id) & 63);
   }
   bool mayHold(uint64_t id) const { return bits_[slot(id) >> 6] >> (slot(id) & 63) & 1; }
@@ -52,7 +52,7 @@ void TreeShading::addRepresentatives(const SampleTree& table, std::span<const ui
 }
 
 // The IDs fb shows that are not kept yet (each once).
-std::vector<uint64_t> TreeShading::unknownShown(const Framebuffer& fb) const {
+std::unordered_set<uint64_t> TreeShading::unknownShown(const Framebuffer& fb) const {
   std::unordered_set<uint64_t> unknown;
   uint64_t last = kNoId;
   for (uint64_t id : fb.id) {
@@ -60,14 +60,13 @@ std::vector<uint64_t> TreeShading::unknownShown(const Framebuffer& fb) const {
     last = id;
     if (!known_.contains(id)) unknown.insert(id);
   }
-  return {unknown.begin(), unknown.end()};
+  return unknown;
 }
 
 void TreeShading::keepShown(const Framebuffer& fb, const ColouredSoup& soup, int threads) {
-  const std::vector<uint64_t> wanted = unknownShown(fb);
-  if (wanted.empty()) return;
-  const IdFilter filter(wanted);
-  const std::unordered_set<uint64_t> want(wanted.begin(), wanted.end());
+  const std::unordered_set<uint64_t> want = unknownShown(fb);
+  if (want.empty()) return;
+  const IdFilter filter(want);
   std::vector<std::vector<uint64_t>> found(size_t(std::max(threads, 1)));  // triangle indices
   for (const SoupRange& r : soup.ranges) {
 #pragma omp parallel for schedule(static) num_threads(threads)

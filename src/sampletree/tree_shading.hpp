@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <span>
 #include <unordered_map>
+#include <unordered_set>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -54,7 +55,7 @@ class TreeShading {
     ShadingInputs inputs;
     Rgba8 colour;
   };
-  std::vector<uint64_t> unknownShown(const Framebuffer& fb) const;
+  std::unordered_set<uint64_t> unknownShown(const Framebuffer& fb) const;
   std::unordered_map<uint64_t, Entry> known_;
 };
 
