@@ -1,6 +1,7 @@
 #include "raycast/lzb_cull.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <exception>
 #include <string>
@@ -13,9 +14,16 @@ namespace {
 
 InputError tooInstanced() {
   return InputError("lzb: more than " + std::to_string(kMaxCullPaths) +
-                    " visible instances with triangles: too instanced for local z-buffering's "
-                    "per-leaf culling (use --method raycast)");
+                    " visible instances with triangles or " + std::to_string(kMaxCullLeaves) +
+                    " visible octree leaves: too instanced for local z-buffering's per-leaf "
+                    "culling (use --method raycast, rzb or hybrid)");
 }
+
+// Paths and leaves listed by every Culler of one cull, so a scene past a limit is refused at the
+// limit, before its lists outgrow memory.
+struct CullCounts {
+  std::atomic<size_t> paths{0}, leaves{0};
+};
 
 // A child instance to visit: its node, placement and ID base.
 struct ChildVisit {
@@ -26,9 +34,10 @@ struct ChildVisit {
 
 class Culler {
  public:
-  Culler(const LzbAccel& accel, const Camera& camera, const LeafFilter* filter)
+  Culler(const LzbAccel& accel, const Camera& camera, const LeafFilter* filter,
+         CullCounts& listed)
       : accel_(accel), scene_(accel.scene()), camera_(camera), frustum_(camera.frustum()),
-        filter_(filter) {}
+        filter_(filter), listed_(listed) {}
 
   // Culls node's octree into out and walks its visible instances, or, with `deferred`, lists
   // them there (in instance order) for the caller to walk.
@@ -37,36 +46,41 @@ class Culler {
     const NodeAccel& a = accel_.node(node);
     if (a.empty()) return;
     const bool hasTriangles = !scene_.nodes[node].mesh.empty();
+    CullPath p;
+    p.node = node;
+    p.world = world;
+    p.idBase = idBase;
+    depthPlane(world, camera_.position(), camera_.forward(), p.depthGrad, p.depthOffset);
+    const LeafPlacement placement{p.depthGrad, p.depthOffset, maxAreaScale(glm::dmat3(world))};
+    p.subtree = filter_ && !scene_.nodes[node].instances.empty() &&
+                filter_->subtreeDrawnElsewhere(node, placement);
+    p.drawnElsewhere = p.subtree || (filter_ && hasTriangles &&
+                                     filter_->nodeDrawnElsewhere(node, placement));
     uint32_t pathIndex = 0;
-    if (hasTriangles) {
-      if (out.paths.size() >= kMaxCullPaths)
+    if (hasTriangles || p.subtree) {
+      if (listed_.paths.fetch_add(1, std::memory_order_relaxed) >= kMaxCullPaths)
         throw tooInstanced();
-      CullPath p;
-      p.node = node;
-      p.world = world;
-      p.idBase = idBase;
-      depthPlane(world, camera_.position(), camera_.forward(), p.depthGrad, p.depthOffset);
-      p.drawnElsewhere =
-          filter_ && filter_->nodeDrawnElsewhere(
-                         node, {p.depthGrad, p.depthOffset, maxAreaScale(glm::dmat3(world))});
       pathIndex = uint32_t(out.paths.size());
       out.paths.push_back(p);
     }
-    const bool listLeaves = hasTriangles && !out.paths[pathIndex].drawnElsewhere;
-    const glm::dvec3 grad = hasTriangles ? out.paths[pathIndex].depthGrad : glm::dvec3(0.0);
-    const double offset = hasTriangles ? out.paths[pathIndex].depthOffset : 0.0;
+    if (p.subtree) return;  // the other pass draws all of it
+    const bool listLeaves = hasTriangles && !p.drawnElsewhere;
     std::vector<uint32_t> instances;
     const Frustum local = hasTriangles ? frustumToNodeSpace(frustum_, world) : Frustum{};
+    const size_t leavesBefore = out.leaves.size();
     a.octree().cullFrustum(frustum_, world, [&](uint32_t leaf, Cull cull) {
       // The leaf's content box, tighter than its cube, decides (cube inside: content inside).
       if (listLeaves && !a.leafTriangles(leaf).empty() &&
           (cull == Cull::kInside || local.classify(a.contentBox(leaf)) != Cull::kOutside)) {
         double lo, hi;
-        depthRange(a.contentBox(leaf), grad, offset, lo, hi);
+        depthRange(a.contentBox(leaf), p.depthGrad, p.depthOffset, lo, hi);
         out.leaves.push_back({pathIndex, leaf, lo, hi});
       }
       for (uint32_t i : a.leafInstances(leaf)) instances.push_back(i);
     });
+    const size_t added = out.leaves.size() - leavesBefore;
+    if (listed_.leaves.fetch_add(added, std::memory_order_relaxed) + added > kMaxCullLeaves)
+      throw tooInstanced();
     if (instances.empty()) return;
     // An instance is listed by every leaf its box overlaps: walk it once, in instance order.
     std::sort(instances.begin(), instances.end());
@@ -93,6 +107,7 @@ class Culler {
   const Camera& camera_;
   Frustum frustum_;
   const LeafFilter* filter_;
+  CullCounts& listed_;
 };
 
 }  // namespace
@@ -102,7 +117,8 @@ void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, in
   out.paths.clear();
   out.leaves.clear();
   out.instancesVisited = 0;
-  Culler culler(accel, camera, filter);
+  CullCounts listed;
+  Culler culler(accel, camera, filter, listed);
   std::vector<ChildVisit> children;
   culler.visit(accel.scene().root, glm::dmat4(1.0), 0, out, &children);
   // The root's visible instances are walked in parallel, each into a part of its own; parts are
@@ -114,7 +130,7 @@ void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, in
   for (long k = 0; k < count; ++k) {
     try {
       const ChildVisit& c = children[size_t(k)];
-      Culler(accel, camera, filter).visit(c.node, c.world, c.idBase, parts[size_t(k)]);
+      Culler(accel, camera, filter, listed).visit(c.node, c.world, c.idBase, parts[size_t(k)]);
     } catch (...) {
 #pragma omp critical
       if (!failure) failure = std::current_exception();
@@ -123,8 +139,6 @@ void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, in
   if (failure) std::rethrow_exception(failure);
   for (const CulledScene& part : parts) {
     const uint32_t offset = uint32_t(out.paths.size());
-    if (out.paths.size() + part.paths.size() > kMaxCullPaths)
-      throw tooInstanced();
     out.paths.insert(out.paths.end(), part.paths.begin(), part.paths.end());
     for (CullLeaf l : part.leaves) {
       l.path += offset;

@@ -25,6 +25,9 @@ struct CullPath {
   double depthOffset = 0.0;
   // A filter (LeafFilter::nodeDrawnElsewhere) took all of its triangles: no leaf is listed.
   bool drawnElsewhere = false;
+  // LeafFilter::subtreeDrawnElsewhere took the node and all it instances: nothing below it is
+  // listed (the path may name a node without triangles).
+  bool subtree = false;
 };
 
 struct CullLeaf {
@@ -40,12 +43,15 @@ struct CulledScene {
 };
 
 // Visible-instance limit: past it the scene is too instanced for a per-leaf cull (throws
-// InputError; the ray casting methods handle such scenes).
+// InputError; the ray casting and sampling methods handle such scenes).
 constexpr size_t kMaxCullPaths = size_t(1) << 22;
+// Visible-leaf limit (24 bytes a leaf: 400 MB), for the same reason.
+constexpr size_t kMaxCullLeaves = size_t(1) << 24;
 
 // The root's visible instances are culled on `threads` threads; the result does not depend on it.
 // With a filter, a placement whose triangles the filter takes wholly is listed with
-// drawnElsewhere set and none of its leaves (its instances are walked as usual).
+// drawnElsewhere set and none of its leaves (its instances are walked as usual); a placement
+// whose whole subtree the filter takes is listed with subtree set too, and not walked into.
 CulledScene cullScene(const LzbAccel& accel, const Camera& camera, int threads = 1,
                       const LeafFilter* filter = nullptr);
 // The same into `out` (cleared first), reusing its memory frame after frame.

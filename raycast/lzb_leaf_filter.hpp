@@ -44,6 +44,11 @@ class LeafFilter {
   // True when all triangles of scene node `node`, so placed, are drawn by the other pass (checked
   // first: the walk then skips the node's triangles, and its whole walk when it has no instances).
   virtual bool nodeDrawnElsewhere(uint32_t node, const LeafPlacement& p) const = 0;
+  // True when node `node` (one with instances), so placed, and everything it instances are
+  // drawn by the other pass: neither the cull nor the walk goes into it.
+  virtual bool subtreeDrawnElsewhere(uint32_t /*node*/, const LeafPlacement& /*p*/) const {
+    return false;
+  }
   // True when leaf `leaf` of scene node `node`, so placed, is drawn by the other pass.
   virtual bool drawnElsewhere(uint32_t node, uint32_t leaf, const LeafPlacement& p) const = 0;
 };

@@ -253,10 +253,11 @@ bool RayWalker::drawnElsewhere(uint32_t ctx, uint32_t leaf) {
 bool RayWalker::instanceDrawnElsewhere(uint32_t ctx, uint32_t i) {
   const Scene& scene = accel_.scene();
   const Instance& inst = scene.nodes[ctx_[ctx].node].instances[i];
-  if (!scene.nodes[inst.node].instances.empty()) return false;
-  // The child's world as contextWorld would compose it: the parent's, then this instance.
-  const glm::dmat4 world = contextWorld(ctx) * inst.transform;
-  return filter_->nodeDrawnElsewhere(inst.node, placementFrom(world, eye_, forward_));
+  // The child's world as contextWorld (and the cull) would compose it: the parent's, then this
+  // instance.
+  const LeafPlacement p = placementFrom(contextWorld(ctx) * inst.transform, eye_, forward_);
+  if (!scene.nodes[inst.node].instances.empty()) return filter_->subtreeDrawnElsewhere(inst.node, p);
+  return filter_->nodeDrawnElsewhere(inst.node, p);
 }
 
 void RayWalker::record(uint32_t ctx, uint32_t leaf, PvlPart& out) {

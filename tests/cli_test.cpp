@@ -270,6 +270,19 @@ TEST(Compare, FramesOfDifferentCamerasAreRefusedNamingBoth) {
   EXPECT_NE(c.output.find(b.string()), std::string::npos) << c.output;
 }
 
+// lzb culls per leaf and per visible instance: the 2.2 * 10^12-triangle chessboard passes its
+// limits at the first frame, where it stops with exit 2 naming the methods that draw the board,
+// and the output folder it made is gone (it used to run out of memory instead).
+TEST(Render, LzbRefusesASceneTooInstancedToCullAndLeavesNoFolder) {
+  const fs::path out = freshDir("too_instanced") / "out";
+  const RunResult r = runLzb("render 'builtin:chessboard?n=1048576' --method lzb --frames 2 --quiet --out " +
+                             out.string());
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("too instanced"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("hybrid"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(Info, CountsInstancedTrianglesAndBuildsOctrees) {
   const RunResult r = runLzb("info 'builtin:chessboard?n=1048576' --json --quiet");
   ASSERT_EQ(r.status, 0) << r.output;

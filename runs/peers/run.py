@@ -12,7 +12,8 @@ ParaView's pvbatch joins as a peer where it is installed (apt-get install paravi
 scene exported by `lzb export` (up to 2*10^7 triangles) rendered along the first 8 cameras of the
 same path on 1 and 2 ranks (IceT), frame time only (the median after the first frame). Install: apt-get install paraview python3-paraview xvfb.
 
-Usage: python3 runs/peers/run.py [--quick] [--plot-only] [--scenes=a,b] [--methods=a,b]
+Usage: python3 runs/peers/run.py [--quick] [--plot-only] [--scenes=a,b] [--methods=a,b] [--keep]
+       (--keep: replace only the rerun scenes' and methods' rows of the existing CSV)
        (from the repository root, after scripts/build.sh and scripts/fetch-test-meshes.sh;
        plots need gnuplot: bash scripts/install-deps.sh --bench)
 Writes runs/peers/peers.csv, limits.csv and peers.png.
@@ -48,8 +49,8 @@ PVBATCH_FRAMES = 8
 PVBATCH_MAX_TRIANGLES = 20_000_000
 # Plotted after the methods when ParaView is installed (frame time only: pvbatch gives no IDs).
 PEERS = ["pvbatch_1rank", "pvbatch_2ranks"]
-# lzb and the hybrid cull per leaf and refuse 10^12-triangle instancing; no z-buffer draws it.
-CANNOT = {("chessboard", "lzb"), ("chessboard", "hybrid"), ("chessboard", "zbuffer")}
+# lzb culls per leaf and refuses 10^12-triangle instancing; no z-buffer draws it.
+CANNOT = {("chessboard", "lzb"), ("chessboard", "zbuffer")}
 
 
 def option(name, default):
@@ -93,6 +94,7 @@ def pvbatch(scene, report, w, h, commands):
 
 def run():
     rows, commands = [], []
+    kept_rows, kept_commands = kept() if "--keep" in sys.argv else ([], [])
     measured = [dict(limits(), when="start")]
     for name in option("scenes", list(SCENES)):
         scene, w, h, frames, zframes = SCENES[name]
@@ -135,15 +137,31 @@ def run():
                 if splat > 0:
                     row["samples_per_s"] = counts("samples_drawn") / splat
             rows.append(row)
+            kept_rows = [r for r in kept_rows if (r["scene"], r["method"]) != (name, label)]
             if method == "raycast" and "pvbatch" in option("methods", ["pvbatch"]):
                 for pv in pvbatch(scene, rep, w, h, commands):
                     rows.append({"scene": name, "triangles": row["triangles"], "width": w, "height": h, **pv})
                     print(f"{name} {pv['method']}: {pv['median_frame_s'] * 1e3:9.1f} ms", flush=True)
             print(f"{name} {label:8s}: {row['median_frame_s'] * 1e3:9.1f} ms, correct (covered, min) "
                   f"{row['correct_rate_covered']}, psnr_aa {row['psnr_aa']}", flush=True)
-            save(rows, measured, commands)  # after every run: a long study keeps its part
+            save(ordered(kept_rows + rows), measured, kept_commands + commands)  # a long study keeps its part
     measured.append(dict(limits(), when="end"))
-    save(rows, measured, commands)
+    save(ordered(kept_rows + rows), measured, kept_commands + commands)
+
+
+def kept():
+    """--keep: the existing CSV's rows and commands, for a run of some scenes or methods to replace
+    only its own rows (the limits are this run's)."""
+    path = os.path.join(HERE, "peers.csv")
+    with open(path) as f:
+        commands = [line[2:].rstrip("\n") for line in f if line.startswith("# ")][1:]
+    return common.read_csv(path), commands
+
+
+def ordered(rows):
+    """Rows by scene, then method, in the study's order."""
+    scenes, methods = list(SCENES), [m for m, _ in METHODS] + PEERS
+    return sorted(rows, key=lambda r: (scenes.index(r["scene"]), methods.index(r["method"])))
 
 
 def save(rows, measured, commands):

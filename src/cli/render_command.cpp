@@ -173,8 +173,9 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
     setupSeconds = setupClock.seconds();
   });
   const nlohmann::json methodSetup = mpi::gatherStats(g, renderer->setupStats());
+  bool created = false;
   mpi::agree(g, [&] {
-    if (g.root()) createOutput(a.out);
+    if (g.root()) created = createOutput(a.out);
   });
 
   Report report(a, plan.options, g, plan.outline, plan.sceneLoaded, commandLine);
@@ -191,6 +192,9 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
       report.printSummary(stdout);
     }
   } catch (const std::exception& e) {
+    // A run refused at its first frame (lzb on a scene too instanced to cull) leaves no folder.
+    std::error_code ec;
+    if (created) fs::remove(a.out, ec);  // (only when still empty)
     // Ranks meet in collectives at every step of a frame: an error on one rank (say, a full disk
     // at the root) would leave the others waiting, so a multi-rank run ends them all now.
     if (g.size == 1) throw;

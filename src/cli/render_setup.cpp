@@ -85,10 +85,11 @@ void checkOutput(const std::string& out) {
   require(created, "--out " + out, "cannot create a folder in " + existing.string());
 }
 
-void createOutput(const std::string& out) {
+bool createOutput(const std::string& out) {
   std::error_code ec;
-  fs::create_directories(out, ec);
+  const bool created = fs::create_directories(out, ec);
   require(!ec, "--out " + out, "cannot create the folder: " + ec.message());
+  return created;
 }
 
 Camera RenderPlan::camera(int f) const {

@@ -22,8 +22,8 @@ uint64_t referenceFrameBytes(int width, int height);
 // --out must name an existing writable folder or one that can be created; checked before any
 // work and without creating anything, so bad input leaves nothing behind.
 void checkOutput(const std::string& out);
-// Creates --out (and its parents); throws InputError naming it.
-void createOutput(const std::string& out);
+// Creates --out (and its parents); throws InputError naming it. True when --out was not there.
+bool createOutput(const std::string& out);
 
 // The loaded scene and what every frame of a run shares.
 struct RenderPlan {

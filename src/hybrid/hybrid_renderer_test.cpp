@@ -1,5 +1,6 @@
 // The hybrid method: exact where the scene has large triangles (the city), close to the
-// definition on sub-pixel geometry (a field of scanned-mesh instances), the same image for any
+// definition on sub-pixel geometry (a field of scanned-mesh instances, a board of 5 * 10^8
+// instanced squares), the same image for any
 // split over ranks, and a walk that really leaves the sampled geometry to the point pass.
 #include "src/hybrid/hybrid_renderer.hpp"
 
@@ -115,6 +116,41 @@ TEST(HybridRenderer, RankSharesCompositeToTheOneRankImageOnASampledField) {
     EXPECT_EQ(composite.depth, single.depth) << size << " ranks";
     EXPECT_EQ(samples, alone.counts.value("samples_drawn", -1.0)) << size << " ranks";
     EXPECT_EQ(rays, alone.counts.value("rays_cast", -1.0)) << size << " ranks";
+  }
+}
+
+// A board of 5.4 * 10^8 sub-pixel squares built by 8 levels of nested 2 x 2 instancing: whole
+// instanced subtrees are sampled as units (a few hundred, not a cull through 65,536 placed
+// blocks), every square visible where it should be, and the units' samples split over ranks and
+// threads to the same image.
+TEST(HybridRenderer, InstancedBoardIsSampledAsWholeSubtrees) {
+  const Scene scene = loadScene("builtin:chessboard?n=16384", true);
+  const Camera cam = testing::pathFrame(scene, 1, 4, 160, 120);
+  HybridRenderer one(scene, testing::lzbRenderOptions(2), HybridParams{});
+  FrameStats alone;
+  const Framebuffer single = testing::renderFrame(one, cam, {}, &alone);
+  const Accuracy a = accuracy(scene, cam, single);
+  EXPECT_GE(a.correctRateCovered, 0.99);
+  EXPECT_LE(a.missingPixels, a.coveredPixels / 100);
+  const double units = alone.shared.value("sampled_leaves", 0.0);
+  EXPECT_GT(units, 0.0);
+  EXPECT_LT(units, 2000.0);
+  EXPECT_EQ(alone.counts.value("pvl_size", 0.0), 0.0);  // nothing left for the rays
+  EXPECT_GT(alone.counts.value("sample_pixels", 0.0), 0.99 * double(a.coveredPixels));
+  HybridRenderer oneThread(scene, testing::lzbRenderOptions(1), HybridParams{});
+  EXPECT_EQ(testing::renderFrame(oneThread, cam).id, single.id);
+  for (int size : {2, 3}) {
+    Framebuffer composite(cam.width(), cam.height());
+    double samples = 0.0;
+    for (int rank = 0; rank < size; ++rank) {
+      FrameStats stats;
+      compositeNearer(composite, testing::renderFrame(oneThread, cam, {rank, size}, &stats));
+      samples += stats.counts.value("samples_drawn", 0.0);
+      EXPECT_LT(stats.counts.value("samples_drawn", 0.0), alone.counts.value("samples_drawn", 0.0));
+    }
+    EXPECT_EQ(composite.id, single.id) << size << " ranks";
+    EXPECT_EQ(composite.depth, single.depth) << size << " ranks";
+    EXPECT_EQ(samples, alone.counts.value("samples_drawn", -1.0)) << size << " ranks";
   }
 }
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "src/core/affine.hpp"
+
 namespace lzb::hybrid {
 
 namespace {
@@ -72,6 +74,12 @@ LeafAreas::LeafAreas(const LzbAccel& accel) {
     std::vector<uint32_t> all(mesh.size());
     std::iota(all.begin(), all.end(), 0u);
     list(std::move(all), out.wholeOrder, out.wholePrefix);
+    out.guide.resize(out.wholePrefix.size());
+    for (size_t b = 0, j = 0; b < out.guide.size(); ++b) {
+      const double bound = double(b) * out.wholePrefix.back() / double(out.guide.size());
+      while (j + 1 < out.wholePrefix.size() && !(out.wholePrefix[j] > bound)) ++j;
+      out.guide[b] = uint32_t(j);
+    }
     const uint32_t count = a.empty() ? 0 : a.octree().nodeCount();
     out.begin.assign(size_t(count) + 1, 0);
     out.maxArea.assign(count, 0.0);
@@ -83,13 +91,98 @@ LeafAreas::LeafAreas(const LzbAccel& accel) {
     }
     out.begin[count] = uint32_t(out.prefix.size());
   }
+  sumSubtrees(accel);
+}
+
+void LeafAreas::sumSubtrees(const LzbAccel& accel) {
+  const Scene& scene = accel.scene();
+  // Children before parents: an iterative depth-first post-order (the graph is acyclic).
+  std::vector<uint8_t> done(scene.nodes.size(), 0);
+  std::vector<std::pair<uint32_t, size_t>> stack;
+  for (uint32_t start = 0; start < scene.nodes.size(); ++start) {
+    if (done[start]) continue;
+    stack.push_back({start, 0});
+    while (!stack.empty()) {
+      auto& [n, next] = stack.back();
+      const std::vector<Instance>& instances = scene.nodes[n].instances;
+      if (next < instances.size()) {
+        const uint32_t child = instances[next++].node;
+        if (!done[child]) stack.push_back({child, 0});
+        continue;
+      }
+      PerNode& out = nodes_[n];
+      const NodeAccel& a = accel.node(n);
+      out.subtreeMax = out.wholeMax;
+      for (size_t i = 0; i < instances.size(); ++i)
+        if (!a.empty() && a.instanceUsable(uint32_t(i)))
+          out.subtreeMax =
+              std::max(out.subtreeMax, nodes_[instances[i].node].subtreeMax *
+                                           maxAreaScale(glm::dmat3(instances[i].transform)));
+      out.flat = flatten(accel, n);
+      flatTotal_ += out.flat.size();
+      double sum = out.wholePrefix.empty() ? 0.0 : out.wholePrefix.back();
+      out.flatPrefix.assign(1, sum);
+      for (const FlatInstance& f : out.flat)
+        out.flatPrefix.push_back(sum += nodes_[f.node].flatPrefix.back() * maxAreaScale(f.transform.a));
+      done[n] = 1;
+      stack.pop_back();
+    }
+  }
+}
+
+std::vector<LeafAreas::FlatInstance> LeafAreas::flatten(const LzbAccel& accel, uint32_t node) const {
+  const Scene& scene = accel.scene();
+  const auto usableInstances = [&](uint32_t n, auto&& visit) {
+    const NodeAccel& a = accel.node(n);
+    for (size_t i = 0; i < scene.nodes[n].instances.size(); ++i)
+      if (!a.empty() && a.instanceUsable(uint32_t(i))) visit(uint32_t(i));
+  };
+  const auto instancesOnly = [&](uint32_t n) {
+    return scene.nodes[n].mesh.empty() && !scene.nodes[n].instances.empty();
+  };
+  std::vector<FlatInstance> entries;
+  usableInstances(node, [&](uint32_t i) {
+    const Instance& inst = scene.nodes[node].instances[i];
+    entries.push_back({inst.node, Affine::from(inst.transform),
+                       accel.node(node).instanceInverse(i), scene.childOffset(node, i)});
+  });
+  for (;;) {  // one more level of instance-only nodes while the budget allows
+    size_t next = 0;
+    bool deeper = false;
+    for (const FlatInstance& e : entries) {
+      if (!instancesOnly(e.node)) {
+        ++next;
+        continue;
+      }
+      deeper = true;
+      usableInstances(e.node, [&](uint32_t) { ++next; });
+    }
+    if (!deeper || next > kFlatBudget || flatTotal_ + next > kFlatTotal) return entries;
+    std::vector<FlatInstance> expanded;
+    expanded.reserve(next);
+    for (const FlatInstance& e : entries) {
+      if (!instancesOnly(e.node)) {
+        expanded.push_back(e);
+        continue;
+      }
+      usableInstances(e.node, [&](uint32_t j) {
+        const Instance& inst = scene.nodes[e.node].instances[j];
+        expanded.push_back({inst.node, e.transform * Affine::from(inst.transform),
+                            accel.node(e.node).instanceInverse(j) * e.inverse,
+                            e.idOffset + scene.childOffset(e.node, j)});
+      });
+    }
+    entries = std::move(expanded);
+  }
 }
 
 uint64_t LeafAreas::memoryBytes() const {
   uint64_t bytes = 0;
   for (const PerNode& n : nodes_)
-    bytes += (n.begin.size() + n.order.size() + n.wholeOrder.size()) * sizeof(uint32_t) +
-             (n.prefix.size() + n.maxArea.size() + n.wholePrefix.size()) * sizeof(double);
+    bytes += (n.begin.size() + n.order.size() + n.wholeOrder.size() + n.guide.size()) * sizeof(uint32_t) +
+             (n.prefix.size() + n.maxArea.size() + n.wholePrefix.size() + n.flatPrefix.size()) *
+                 sizeof(double) +
+             n.flat.size() * sizeof(FlatInstance);
   return bytes;
 }
 

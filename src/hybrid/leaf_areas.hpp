@@ -2,7 +2,8 @@
 // What the hybrid's point pass needs of every leaf of the local z-buffering octrees
 // (raycast/lzb_accel.hpp), and of every node as a whole: its triangles listed along a Morton
 // curve of their centroids, with the inclusive prefix sums of their areas (node frame, double),
-// and its largest triangle's area. Stratified samples along a spatially coherent list spread
+// and its largest triangle's area; and the same sums over a node's instances, for the point pass
+// to take a whole instanced subtree as one unit. Stratified samples along a spatially coherent list spread
 // evenly over the surface (as rzb's distribution list in octree order does), so a pixel is less
 // often left without a sample. Built once per scene node: instanced content costs its unique
 // triangles only.
@@ -11,6 +12,7 @@
 #include <vector>
 
 #include "raycast/lzb_accel.hpp"
+#include "src/core/affine.hpp"
 
 namespace lzb::hybrid {
 
@@ -35,7 +37,32 @@ class LeafAreas {
   // The same for all triangles of the node.
   std::span<const uint32_t> nodeOrder(uint32_t node) const { return nodes_[node].wholeOrder; }
   std::span<const double> nodePrefix(uint32_t node) const { return nodes_[node].wholePrefix; }
+  // A position of nodePrefix at or before the first one above `area` (a guide table: one entry
+  // per triangle's share of the total), so a search from it takes a step or two.
+  uint64_t nodeGuide(uint32_t node, double area) const {
+    const PerNode& n = nodes_[node];
+    const double b = area * double(n.guide.size()) / n.wholePrefix.back();
+    return b >= 1.0 ? n.guide[std::min(size_t(b) - 1, n.guide.size() - 1)] : 0;
+  }
   double nodeMaxArea(uint32_t node) const { return nodes_[node].wholeMax; }
+  // The node with everything it instances, for the point pass to sample a whole instanced
+  // subtree. Its instances flattened: chains of nodes with instances only are replaced by their
+  // instances, composed, level by level while a node keeps at most kFlatBudget entries (nested
+  // 2 x 2 instancing then costs one entry per 6 levels when a sample descends).
+  struct FlatInstance {
+    uint32_t node;
+    Affine transform, inverse;  // entry node frame -> this node's frame, and back
+    uint64_t idOffset;          // the entry's expanded ID 0 relative to this node's
+  };
+  static constexpr size_t kFlatBudget = 4096;
+  static constexpr size_t kFlatTotal = size_t(1) << 18;  // entries over all nodes (~56 MB)
+  std::span<const FlatInstance> flat(uint32_t node) const { return nodes_[node].flat; }
+  // Inclusive prefix sums of [its own triangles' area, flat entry 0's subtree area, ...] (node
+  // frame; an entry's area scaled by its transform's largest area factor, maxAreaScale, so an
+  // upper bound past similarity transforms), and the largest triangle area under the node.
+  std::span<const double> flatPrefix(uint32_t node) const { return nodes_[node].flatPrefix; }
+  double subtreeArea(uint32_t node) const { return nodes_[node].flatPrefix.back(); }
+  double subtreeMaxArea(uint32_t node) const { return nodes_[node].subtreeMax; }
   uint64_t memoryBytes() const;
 
  private:
@@ -46,9 +73,16 @@ class LeafAreas {
     std::vector<double> maxArea;   // per octree node
     std::vector<uint32_t> wholeOrder;  // all of the node's triangles, along the curve
     std::vector<double> wholePrefix;   // per position of wholeOrder
+    std::vector<uint32_t> guide;  // [b]: the first position whose prefix passes b / size of it
     double wholeMax = 0.0;
+    std::vector<FlatInstance> flat;
+    std::vector<double> flatPrefix;  // 1 + flat entries
+    double subtreeMax = 0.0;
   };
+  void sumSubtrees(const LzbAccel& accel);
+  std::vector<FlatInstance> flatten(const LzbAccel& accel, uint32_t node) const;
   std::vector<PerNode> nodes_;
+  size_t flatTotal_ = 0;
 };
 
 }  // namespace lzb::hybrid

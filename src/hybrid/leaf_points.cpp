@@ -102,6 +102,107 @@ void splatLeaf(const LzbAccel& accel, const LeafAreas& areas, const CullPath& pa
   }
 }
 
+// One level of a subtree unit's descent: a placed node covering [lo, hi) of the unit's area
+// coordinate, lo + scale x its own area coordinate.
+struct Level {
+  uint32_t node;
+  Affine toCamera;
+  glm::dvec3 eyeLocal;
+  uint64_t idBase;
+  double lo, scale, hi;
+  uint64_t tri, entry;  // search positions in its triangles and flat entries (targets grow)
+};
+
+// The first k in [from, n) with lo + P[k] x scale > target (n - 1 if none): a forward gallop,
+// the boundaries computed as the descent's levels compute theirs.
+uint64_t firstAbove(const double* P, uint64_t n, uint64_t from, double lo, double scale,
+                    double target) {
+  const auto above = [&](uint64_t k) { return lo + P[k] * scale > target; };
+  uint64_t step = 1, k = from;
+  while (k < n && !above(k)) {
+    const uint64_t next = std::min(n, k + step);
+    if (next == n || above(next - 1)) {
+      for (uint64_t hi = next; k + 1 < hi;) {  // above(hi - 1) or hi == n; !above(k)
+        const uint64_t mid = k + (hi - k) / 2;
+        if (above(mid)) hi = mid; else k = mid;
+      }
+      return std::min(k + 1, n - 1);
+    }
+    k = next;
+    step <<= 1;
+  }
+  return std::min(k, n - 1);
+}
+
+// Splats samples [first, first + count) of a subtree unit: sample i's stratum of the unit's area
+// is found by descending through the (flattened) instances by their area shares to one node's
+// triangles. The previous sample's descent is kept while the next target stays below each
+// level's upper boundary, the value the descent compared it with, so a sample's triangle never
+// depends on where its job began.
+template <class Splatter>
+void splatSubtree(const LzbAccel& accel, const LeafAreas& areas, const CullPath& path,
+                  const PathView& view, const SampledLeaf& sl, uint64_t first, uint64_t count,
+                  const PointParams& params, const SampleStream& stream,
+                  std::vector<uint32_t> (&w)[4], std::vector<Level>& stack, Splatter& out,
+                  uint64_t& back) {
+  const Scene& scene = accel.scene();
+  const double total = areas.subtreeArea(path.node), inv = 1.0 / double(sl.samples);
+  stack.assign(1, {path.node, view.toCamera, view.eyeLocal, path.idBase, 0.0, 1.0,
+                   std::numeric_limits<double>::infinity(), 0, 0});
+  for (uint64_t s0 = first; s0 < first + count; s0 += kBatch) {
+    const uint32_t m = uint32_t(std::min<uint64_t>(kBatch, first + count - s0));
+    philoxBatch(stream, sl.key, s0, m, w[0].data(), w[1].data(), w[2].data(), w[3].data());
+    for (uint32_t i = 0; i < m; ++i) {
+      const double jitter = (double(w[0][i]) + 0.5) * 0x1p-32;
+      const double target = std::min((double(s0 + i) + jitter) * inv, 1.0 - 0x1p-53) * total;
+      size_t keep = 1;  // root first: the levels that still hold the target
+      while (keep < stack.size() && target < stack[keep].hi) ++keep;
+      stack.resize(keep);
+      for (;;) {  // down to the node whose own triangles hold the target
+        Level& l = stack.back();
+        const std::span<const double> P = areas.flatPrefix(l.node);
+        if (P.size() == 1 || l.lo + P[0] * l.scale > target) break;
+        // Entry k covers [P[k], P[k + 1]): the first with its upper boundary above the target,
+        // never one of weight 0 (an unusable instance) at the end.
+        uint64_t k = firstAbove(P.data() + 1, P.size() - 1, l.entry, l.lo, l.scale, target);
+        while (k > 0 && P[k + 1] == P[k]) --k;
+        l.entry = k;
+        const LeafAreas::FlatInstance& e = areas.flat(l.node)[k];
+        const bool shift = e.transform.translationOnly();  // most instancing: cheaper
+        const Level child{e.node,
+                          shift ? Affine{l.toCamera.a, l.toCamera.point(e.transform.t)}
+                                : l.toCamera * e.transform,
+                          shift ? l.eyeLocal - e.transform.t : e.inverse.point(l.eyeLocal),
+                          l.idBase + e.idOffset,
+                          l.lo + P[k] * l.scale,
+                          l.scale * (P[k + 1] - P[k]) / areas.subtreeArea(e.node),
+                          l.lo + P[k + 1] * l.scale,
+                          0,
+                          0};
+        stack.push_back(child);
+      }
+      Level& l = stack.back();
+      const std::span<const double> prefix = areas.nodePrefix(l.node);
+      const double local = (target - l.lo) / l.scale;
+      l.tri = searchForward(prefix.data(), prefix.size(),
+                            std::max(l.tri, areas.nodeGuide(l.node, local)), local);
+      const uint32_t t = areas.nodeOrder(l.node)[l.tri];
+      const Mesh& mesh = scene.nodes[l.node].mesh;
+      float a = unit24(w[2][i]), c = unit24(w[3][i]);
+      foldUnitSquare(a, c);
+      const glm::vec3& v0 = mesh.vertex(t, 0);
+      const glm::vec3 p = v0 + a * (mesh.vertex(t, 1) - v0) + c * (mesh.vertex(t, 2) - v0);
+      if (params.dropBackfaces &&
+          glm::dot(glm::dvec3(mesh.normals[t]), l.eyeLocal - glm::dvec3(p)) < 0.0) {
+        ++back;
+        continue;
+      }
+      const glm::dvec3 q = l.toCamera.point(glm::dvec3(p));
+      out.add(float(q.x), float(q.y), float(q.z), l.idBase + t);
+    }
+  }
+}
+
 template <bool kWide, bool kPixel>
 PointCounts runJobs(const LzbAccel& accel, const LeafAreas& areas, const CulledScene& culled,
                     std::span<const SampledLeaf> leaves, std::span<const uint32_t> mine,
@@ -116,14 +217,20 @@ PointCounts runJobs(const LzbAccel& accel, const LeafAreas& areas, const CulledS
     PointSplatter<kWide, kPixel> out(setup, keys);
     std::vector<uint32_t> w[4];
     for (auto& v : w) v.resize(kBatch);
+    std::vector<Level> stack;
 #pragma omp for schedule(dynamic, 1)
     for (long k = 0; k < n; ++k) {
       const Job& job = jobs[size_t(k)];
       for (uint32_t m = job.begin; m < job.end; ++m) {
         const SampledLeaf& sl = leaves[mine[m]];
         const bool part = job.end == job.begin + 1;
-        splatLeaf(accel, areas, culled.paths[sl.path], views[sl.path], sl, part ? job.first : 0,
-                  part ? job.count : sl.samples, params, stream, w, out, back);
+        const uint64_t from = part ? job.first : 0, n = part ? job.count : sl.samples;
+        if (sl.leaf == kSubtree)
+          splatSubtree(accel, areas, culled.paths[sl.path], views[sl.path], sl, from, n, params,
+                       stream, w, stack, out, back);
+        else
+          splatLeaf(accel, areas, culled.paths[sl.path], views[sl.path], sl, from, n, params,
+                    stream, w, out, back);
       }
       drawn += job.count;
     }
@@ -147,14 +254,23 @@ bool SampledLeafRule::drawnElsewhere(uint32_t node, uint32_t leaf, const LeafPla
   return sampled(node, leaf, lo, p.areaScale);
 }
 
+bool SampledLeafRule::wholeUnit(const Bounds& box, double maxArea, const LeafPlacement& p) const {
+  double lo, hi;
+  depthRange(box, p.depthGrad, p.depthOffset, lo, hi);
+  if (!(lo > 0.0) || (hi / lo) * (hi / lo) > kNodeDepthRatio) return false;
+  const double ppu = pixelScale_ / lo;
+  return maxArea * p.areaScale * ppu * ppu < thresholdPx_;
+}
+
 bool SampledLeafRule::nodeDrawnElsewhere(uint32_t node, const LeafPlacement& p) const {
   const NodeAccel& a = accel_.node(node);
   if (a.empty() || accel_.scene().nodes[node].mesh.empty()) return false;
-  double lo, hi;
-  depthRange(a.contentBox(0), p.depthGrad, p.depthOffset, lo, hi);  // the root's: all triangles
-  if (!(lo > 0.0) || (hi / lo) * (hi / lo) > kNodeDepthRatio) return false;
-  const double ppu = pixelScale_ / lo;
-  return areas_.nodeMaxArea(node) * p.areaScale * ppu * ppu < thresholdPx_;
+  return wholeUnit(a.contentBox(0), areas_.nodeMaxArea(node), p);  // the root's: all triangles
+}
+
+bool SampledLeafRule::subtreeDrawnElsewhere(uint32_t node, const LeafPlacement& p) const {
+  if (accel_.node(node).empty() || accel_.scene().nodes[node].instances.empty()) return false;
+  return wholeUnit(accel_.scene().nodeBounds[node], areas_.subtreeMaxArea(node), p);
 }
 
 SampledUnits sampledLeaves(const LzbAccel& accel, const LeafAreas& areas,
@@ -183,7 +299,11 @@ SampledUnits sampledLeaves(const LzbAccel& accel, const LeafAreas& areas,
     const CullPath& p = culled.paths[path];
     const LeafPlacement placement{p.depthGrad, p.depthOffset, maxAreaScale(glm::dmat3(p.world))};
     const bool whole = p.drawnElsewhere;  // the cull applied the whole-node rule
-    if (whole) {
+    if (p.subtree) {
+      double lo, hi;
+      depthRange(accel.scene().nodeBounds[p.node], p.depthGrad, p.depthOffset, lo, hi);
+      add(path, kSubtree, areas.subtreeArea(p.node), placement.areaScale, lo);
+    } else if (whole) {
       double lo, hi;
       depthRange(accel.node(p.node).contentBox(0), p.depthGrad, p.depthOffset, lo, hi);
       const std::span<const double> prefix = areas.nodePrefix(p.node);

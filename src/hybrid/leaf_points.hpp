@@ -3,7 +3,10 @@
 // small to be worth exact drawing: the randomized z-buffer's rule (Wand et al., section 7.1)
 // applied to the local z-buffering octree's leaves.
 //
-// Rule. A whole placed node is sampled as one unit, wherever it lies, when its triangles' bounds
+// Rule. A placed node with instances is sampled as one unit with everything under it, wherever
+// it lies, when its bounds (instances included) pass the same two tests (an instanced field of
+// 10^12 sub-pixel triangles is then a few thousand units, not a cull through every instance).
+// A whole placed node is sampled as one unit, wherever it lies, when its triangles' bounds
 // span a depth ratio (depthMax / depthMin)^2 of at most kNodeDepthRatio (the samples' density
 // follows depthMin: rzb's eps) and its largest triangle, scaled by the instance path and seen at
 // depthMin, covers less than `thresholdPx` pixels (d^2 / ln v by default, as rzb's fallback):
@@ -51,21 +54,27 @@ class SampledLeafRule : public LeafFilter {
   void setPlane(double zClip) { zClip_ = zClip; }
   bool nodeDrawnElsewhere(uint32_t node, const LeafPlacement& p) const override;
   bool drawnElsewhere(uint32_t node, uint32_t leaf, const LeafPlacement& p) const override;
+  bool subtreeDrawnElsewhere(uint32_t node, const LeafPlacement& p) const override;
   // The rule with the leaf's nearest view depth known (the cull's CullLeaf::depthMin).
   bool sampled(uint32_t node, uint32_t leaf, double depthMin, double areaScale) const;
 
  private:
+  // The whole-unit rule: a box of the unit (node frame) within the depth ratio, its largest
+  // triangle (node frame) below the threshold at the box's nearest depth.
+  bool wholeUnit(const Bounds& box, double maxArea, const LeafPlacement& p) const;
+
   const LzbAccel& accel_;
   const LeafAreas& areas_;
   double zClip_ = std::numeric_limits<double>::infinity(), pixelScale_, thresholdPx_;
 };
 
 constexpr uint32_t kWholeNode = ~uint32_t(0);
+constexpr uint32_t kSubtree = ~uint32_t(0) - 1;  // the node and everything it instances
 constexpr double kNodeDepthRatio = 1.5;
 
 struct SampledLeaf {
   uint32_t path, leaf;  // CulledScene::paths index; octree node of the path's scene node, or
-                        // kWholeNode for all its triangles
+                        // kWholeNode for all its triangles, kSubtree for all under it
   uint64_t key;         // Philox key of the leaf at this placement
   uint64_t samples;
   double depthMin;
