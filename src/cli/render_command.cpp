@@ -102,9 +102,10 @@ void addAccuracy(const mpi::FrameDriver& driver, const Judge& judge, const Camer
 
 // Renders frame f on the ranks of the driver's group: its root gets the image, the report entry
 // and, with --subsamples, the frame's own sub-samples.
-FrameResult renderFrame(const RenderArgs& a, const mpi::FrameDriver& driver, const Camera& camera,
-                        Renderer& renderer, const Judge& judge, int f) {
-  FrameResult r;
+// r's image keeps its memory from the previous frame: a fresh 4-16 MB frame buffer a frame cost
+// up to 9 ms of page faults here (raycast's `clear` stage on the 512^2 city).
+void renderFrame(const RenderArgs& a, const mpi::FrameDriver& driver, const Camera& camera,
+                 Renderer& renderer, const Judge& judge, int f, FrameResult& r) {
   r.entry = driver.render(renderer, camera, f, r.image);
   if (a.subsamples) {
     double seconds = 0.0;
@@ -112,7 +113,6 @@ FrameResult renderFrame(const RenderArgs& a, const mpi::FrameDriver& driver, con
     if (driver.group().root()) r.entry["subsample_seconds"] = seconds;
   }
   if (judge.reference) addAccuracy(driver, judge, camera, f, r.image, r.entry);
-  return r;
 }
 
 // The frame loop: frames are dealt to the frame groups round-robin (frame f to group f mod G),
@@ -125,14 +125,15 @@ void renderFrames(const RenderArgs& a, const mpi::Group& world, const mpi::SubGr
                                 mpi::parseCompositeStrategy(a.composite, "--composite"));
   Progress progress("rendering " + std::to_string(a.frames) + " frames", uint64_t(a.frames),
                     talk && a.frames > 1);
+  FrameResult mine, received;
   for (int first = 0; first < a.frames; first += groups.count()) {
     const int f = first + groups.index();
-    FrameResult mine;
-    if (f < a.frames) mine = renderFrame(a, driver, plan.camera(f), renderer, judge, f);
+    if (f < a.frames) renderFrame(a, driver, plan.camera(f), renderer, judge, f, mine);
     for (int k = 0; k < groups.count() && first + k < a.frames; ++k) {
       const int from = groups.rootOf(k);
       if (world.root()) {
-        FrameResult r = from == 0 ? std::move(mine) : receiveFrame(world, from);
+        if (from != 0) received = receiveFrame(world, from);
+        FrameResult& r = from == 0 ? mine : received;
         const Camera camera = plan.camera(first + k);
         const FrameOrigin origin{camera, plan.scene.expandedTriangles()};
         writeFrame(r.image, a.out, first + k, a.subsamples ? &r.own : nullptr, &origin);
