@@ -25,8 +25,8 @@ struct CullPath {
   double depthOffset = 0.0;
   // A filter (LeafFilter::nodeDrawnElsewhere) took all of its triangles: no leaf is listed.
   bool drawnElsewhere = false;
-  // LeafFilter::subtreeDrawnElsewhere took the node and all it instances: nothing below it is
-  // listed (the path may name a node without triangles).
+  // LeafFilter::subtreeDrawnElsewhere took the node and everything it instances: nothing below
+  // it is listed (the path may name a node without triangles).
   bool subtree = false;
 };
 

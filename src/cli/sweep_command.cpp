@@ -98,9 +98,9 @@ SweepRow sweepOne(const SweepArgs& s, const SweepGrid& grid, uint64_t k, const m
   mpi::agree(g, [&] { c = makeContender(s, grid, k, plan); });
   const mpi::FrameDriver driver(g, plan.scene, mpi::parseCompositeStrategy(c.args.composite, "--composite"));
   std::vector<FrameMeasure> frames;
+  Framebuffer image;  // one for every frame: a fresh one costs page faults inside the frame time
   for (int f = 0; f < plan.frames; ++f) {
     const Camera camera = plan.camera(f);
-    Framebuffer image;
     const nlohmann::json entry = driver.render(*c.renderer, camera, f, image);
     if (g.root()) {
       double judging = 0.0;

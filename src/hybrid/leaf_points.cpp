@@ -64,6 +64,24 @@ std::vector<Job> makeJobs(std::span<const SampledLeaf> leaves, std::span<const u
   return jobs;
 }
 
+// A uniform point of triangle t from two Philox words, splatted with its expanded ID unless it
+// faces away from the eye (given in the mesh's frame).
+template <class Splatter>
+void splatPoint(const Mesh& mesh, uint32_t t, uint32_t wa, uint32_t wc, const Affine& toCamera,
+                const glm::dvec3& eyeLocal, uint64_t idBase, bool dropBackfaces, Splatter& out,
+                uint64_t& back) {
+  float a = unit24(wa), c = unit24(wc);
+  foldUnitSquare(a, c);
+  const glm::vec3& v0 = mesh.vertex(t, 0);
+  const glm::vec3 p = v0 + a * (mesh.vertex(t, 1) - v0) + c * (mesh.vertex(t, 2) - v0);
+  if (dropBackfaces && glm::dot(glm::dvec3(mesh.normals[t]), eyeLocal - glm::dvec3(p)) < 0.0) {
+    ++back;
+    return;
+  }
+  const glm::dvec3 q = toCamera.point(glm::dvec3(p));
+  out.add(float(q.x), float(q.y), float(q.z), idBase + t);
+}
+
 // Splats samples [first, first + count) of one leaf.
 template <class Splatter>
 void splatLeaf(const LzbAccel& accel, const LeafAreas& areas, const CullPath& path,
@@ -86,18 +104,8 @@ void splatLeaf(const LzbAccel& accel, const LeafAreas& areas, const CullPath& pa
       const double jitter = (double(w[0][i]) + 0.5) * 0x1p-32;
       const double u = std::min((double(s0 + i) + jitter) * inv, 1.0 - 0x1p-53);
       j = searchForward(prefix.data(), prefix.size(), j, u * total);
-      const uint32_t t = tris[j];
-      float a = unit24(w[2][i]), c = unit24(w[3][i]);
-      foldUnitSquare(a, c);
-      const glm::vec3& v0 = mesh.vertex(t, 0);
-      const glm::vec3 p = v0 + a * (mesh.vertex(t, 1) - v0) + c * (mesh.vertex(t, 2) - v0);
-      if (params.dropBackfaces &&
-          glm::dot(glm::dvec3(mesh.normals[t]), view.eyeLocal - glm::dvec3(p)) < 0.0) {
-        ++back;
-        continue;
-      }
-      const glm::dvec3 q = view.toCamera.point(glm::dvec3(p));
-      out.add(float(q.x), float(q.y), float(q.z), path.idBase + t);
+      splatPoint(mesh, tris[j], w[2][i], w[3][i], view.toCamera, view.eyeLocal, path.idBase,
+                 params.dropBackfaces, out, back);
     }
   }
 }
@@ -186,19 +194,8 @@ void splatSubtree(const LzbAccel& accel, const LeafAreas& areas, const CullPath&
       const double local = (target - l.lo) / l.scale;
       l.tri = searchForward(prefix.data(), prefix.size(),
                             std::max(l.tri, areas.nodeGuide(l.node, local)), local);
-      const uint32_t t = areas.nodeOrder(l.node)[l.tri];
-      const Mesh& mesh = scene.nodes[l.node].mesh;
-      float a = unit24(w[2][i]), c = unit24(w[3][i]);
-      foldUnitSquare(a, c);
-      const glm::vec3& v0 = mesh.vertex(t, 0);
-      const glm::vec3 p = v0 + a * (mesh.vertex(t, 1) - v0) + c * (mesh.vertex(t, 2) - v0);
-      if (params.dropBackfaces &&
-          glm::dot(glm::dvec3(mesh.normals[t]), l.eyeLocal - glm::dvec3(p)) < 0.0) {
-        ++back;
-        continue;
-      }
-      const glm::dvec3 q = l.toCamera.point(glm::dvec3(p));
-      out.add(float(q.x), float(q.y), float(q.z), l.idBase + t);
+      splatPoint(scene.nodes[l.node].mesh, areas.nodeOrder(l.node)[l.tri], w[2][i], w[3][i],
+                 l.toCamera, l.eyeLocal, l.idBase, params.dropBackfaces, out, back);
     }
   }
 }
