@@ -176,11 +176,9 @@ void splatSubtree(const LzbAccel& accel, const LeafAreas& areas, const CullPath&
         while (k > 0 && P[k + 1] == P[k]) --k;
         l.entry = k;
         const LeafAreas::FlatInstance& e = areas.flat(l.node)[k];
-        const bool shift = e.transform.translationOnly();  // most instancing: cheaper
         const Level child{e.node,
-                          shift ? Affine{l.toCamera.a, l.toCamera.point(e.transform.t)}
-                                : l.toCamera * e.transform,
-                          shift ? l.eyeLocal - e.transform.t : e.inverse.point(l.eyeLocal),
+                          l.toCamera * e.transform,
+                          e.inverse.point(l.eyeLocal),
                           l.idBase + e.idOffset,
                           l.lo + P[k] * l.scale,
                           l.scale * (P[k + 1] - P[k]) / areas.subtreeArea(e.node),
