@@ -51,11 +51,13 @@ class Culler {
     p.world = world;
     p.idBase = idBase;
     depthPlane(world, camera_.position(), camera_.forward(), p.depthGrad, p.depthOffset);
-    const LeafPlacement placement{p.depthGrad, p.depthOffset, maxAreaScale(glm::dmat3(world))};
-    p.subtree = filter_ && !scene_.nodes[node].instances.empty() &&
-                filter_->subtreeDrawnElsewhere(node, placement);
-    p.drawnElsewhere = p.subtree || (filter_ && hasTriangles &&
-                                     filter_->nodeDrawnElsewhere(node, placement));
+    if (filter_) {  // (the area scale only for a filter: lzb's own cull needs none)
+      const LeafPlacement placement{p.depthGrad, p.depthOffset, maxAreaScale(glm::dmat3(world))};
+      p.subtree = !scene_.nodes[node].instances.empty() &&
+                  filter_->subtreeDrawnElsewhere(node, placement);
+      p.drawnElsewhere =
+          p.subtree || (hasTriangles && filter_->nodeDrawnElsewhere(node, placement));
+    }
     uint32_t pathIndex = 0;
     if (hasTriangles || p.subtree) {
       if (listed_.paths.fetch_add(1, std::memory_order_relaxed) >= kMaxCullPaths)

@@ -179,7 +179,8 @@ std::vector<LeafAreas::FlatInstance> LeafAreas::flatten(const LzbAccel& accel, u
 uint64_t LeafAreas::memoryBytes() const {
   uint64_t bytes = 0;
   for (const PerNode& n : nodes_)
-    bytes += (n.begin.size() + n.order.size() + n.wholeOrder.size() + n.guide.size()) * sizeof(uint32_t) +
+    bytes += (n.begin.size() + n.order.size() + n.wholeOrder.size() + n.guide.size()) *
+                 sizeof(uint32_t) +
              (n.prefix.size() + n.maxArea.size() + n.wholePrefix.size() + n.flatPrefix.size()) *
                  sizeof(double) +
              n.flat.size() * sizeof(FlatInstance);

@@ -3,8 +3,8 @@
 // (raycast/lzb_accel.hpp), and of every node as a whole: its triangles listed along a Morton
 // curve of their centroids, with the inclusive prefix sums of their areas (node frame, double),
 // and its largest triangle's area; and the same sums over a node's instances, for the point pass
-// to take a whole instanced subtree as one unit. Stratified samples along a spatially coherent list spread
-// evenly over the surface (as rzb's distribution list in octree order does), so a pixel is less
+// to take a whole instanced subtree as one unit. Stratified samples along a spatially coherent
+// list spread evenly over the surface (as rzb's distribution list in octree order does), so a pixel is less
 // often left without a sample. Built once per scene node: instanced content costs its unique
 // triangles only.
 #include <cstdint>
