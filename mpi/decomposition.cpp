@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "src/core/error.hpp"
+
 namespace lzb {
 
 IdRange shareRange(uint64_t total, const WorkShare& share) {
@@ -15,6 +17,22 @@ std::vector<int> ScreenTiles::owned(const WorkShare& share) const {
   std::vector<int> out;
   for (int t = share.rank; t < count(); t += share.size) out.push_back(t);
   return out;
+}
+
+TileDeal parseTileDeal(const std::string& text, const std::string& field) {
+  if (text == "interleaved") return TileDeal::kInterleaved;
+  if (text == "cost") return TileDeal::kCost;
+  throw InputError(field + ": expected interleaved or cost, got '" + text + "'");
+}
+
+std::string toString(TileDeal deal) {
+  return deal == TileDeal::kCost ? "cost" : "interleaved";
+}
+
+std::vector<int> ScreenTiles::ownedByCost(std::span<const double> costs,
+                                          const WorkShare& share) const {
+  const std::vector<uint32_t> mine = dealByCost(costs, share);
+  return {mine.begin(), mine.end()};
 }
 
 std::vector<uint32_t> dealByCost(std::span<const double> costs, const WorkShare& share) {

@@ -4,12 +4,15 @@
 // so the composited image never does either; only who does the work changes.
 //  - ID ranges (sort-last z-buffer): [0, total) cut into equal contiguous ranges in rank order.
 //  - Screen tiles (ray casting): square tiles in row-major order, dealt interleaved
-//    (tile % ranks == rank), so neighbouring tiles land on different ranks and cost evens out.
+//    (tile % ranks == rank), so neighbouring tiles land on different ranks and cost evens out,
+//    or by cost (contiguous runs of about equal estimated cost: the rays each tile will cast,
+//    which every rank knows alike).
 //  - Items by cost (octree boxes of the point pass): contiguous runs of about equal estimated
 //    cost, in the items' own order.
 #include <algorithm>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "src/core/renderer.hpp"
@@ -34,6 +37,12 @@ struct TileRect {
   int pixels() const { return (x1 - x0) * (y1 - y0); }
 };
 
+// How screen tiles are dealt to ranks (--tile-deal).
+enum class TileDeal { kInterleaved, kCost };
+// Throws InputError naming `field` on an unknown name.
+TileDeal parseTileDeal(const std::string& text, const std::string& field);
+std::string toString(TileDeal deal);
+
 class ScreenTiles {
  public:
   static constexpr int kDefaultSide = 16;
@@ -50,6 +59,9 @@ class ScreenTiles {
   }
   // The tiles rank share.rank renders, in increasing order.
   std::vector<int> owned(const WorkShare& share) const;
+  // The tiles rank share.rank renders when tile t costs costs[t] (count() entries): a
+  // contiguous run of about equal cost (dealByCost below), in increasing order.
+  std::vector<int> ownedByCost(std::span<const double> costs, const WorkShare& share) const;
 
  private:
   int width_, height_, side_;

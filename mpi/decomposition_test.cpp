@@ -4,6 +4,8 @@
 
 #include <numeric>
 
+#include "src/core/error.hpp"
+
 namespace lzb {
 namespace {
 
@@ -38,6 +40,30 @@ TEST(Decomposition, ScreenTilesCoverTheImageOnceAcrossRanks) {
       }
     for (int h : hits) ASSERT_EQ(h, 1) << size << " ranks";
   }
+}
+
+TEST(Decomposition, TilesByCostGoOnceWithEqualShares) {
+  const ScreenTiles tiles(100, 37);
+  // A skyline: the rays of a street view gather in one band of tiles.
+  std::vector<double> costs(size_t(tiles.count()), 0.0);
+  for (int t = 7; t < 14; ++t) costs[size_t(t)] = 10.0 + t;
+  for (int size : {1, 2, 3}) {
+    std::vector<int> owner(size_t(tiles.count()), -1);
+    for (int rank = 0; rank < size; ++rank) {
+      double cost = 0.0;
+      for (int t : tiles.ownedByCost(costs, {rank, size})) {
+        EXPECT_EQ(owner[size_t(t)], -1);
+        owner[size_t(t)] = rank;
+        cost += costs[size_t(t)];
+      }
+      EXPECT_GT(cost, 0.0) << rank << " of " << size << ": every rank casts rays";
+      EXPECT_NEAR(cost, 126.0 / size, 23.0) << rank << " of " << size;
+    }
+    for (int o : owner) EXPECT_GE(o, 0);
+  }
+  EXPECT_EQ(parseTileDeal("cost", "--tile-deal"), TileDeal::kCost);
+  EXPECT_EQ(toString(parseTileDeal("interleaved", "--tile-deal")), "interleaved");
+  EXPECT_THROW(parseTileDeal("random", "--tile-deal"), InputError);
 }
 
 TEST(Decomposition, ItemsByCostGoOnceInContiguousRunsOfAboutEqualCost) {

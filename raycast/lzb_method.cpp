@@ -32,6 +32,7 @@ class LzbMethod : public Method {
   std::string nearRender_ = "native";
   std::string pvlRender_ = "native";
   std::string farRays_ = "embree";
+  std::string tileDeal_ = "interleaved";
   LzbOptions options_;
 };
 
@@ -58,6 +59,7 @@ void LzbMethod::addOptions(CLI::App& c) {
                "lzb: who casts the far rays of the PVL stages: embree (each hit recorded as the "
                "octree leaves around it) | walk (the paper's octree walk, with its occluders)")
       ->capture_default_str();
+  addTileDealOption(c, tileDeal_);
   c.add_option("--lzb-walk", walk_,
                "lzb: ray-octree walk: topdown | coherent (default: coherent for final, else "
                "topdown)");
@@ -89,6 +91,7 @@ void LzbMethod::validate() {
   o.nearRender = parseZBufferKind(nearRender_, "--near-render");
   o.pvlRender = parseZBufferKind(pvlRender_, "--pvl-render");
   o.farRays = parseFarRays(farRays_, "--lzb-rays");
+  o.tileDeal = parseTileDeal(tileDeal_, "--tile-deal");
   lzb::validate(o);
 }
 
@@ -107,6 +110,7 @@ nlohmann::json LzbMethod::parameters() const {
   if (o.usesPvl()) {
     j["pvl_render"] = toString(o.pvlRender);
     j["far_rays"] = toString(o.farRays);
+    j["tile_deal"] = toString(o.tileDeal);
   }
   if (o.usesWalk()) j["octree_walk"] = toString(o.octreeWalk());
   if (o.usesWalk() && o.usesOccluders()) {
@@ -117,6 +121,12 @@ nlohmann::json LzbMethod::parameters() const {
 }
 
 }  // namespace
+
+void addTileDealOption(CLI::App& c, std::string& value) {
+  addSharedOption(c, "--tile-deal", value,
+                  "lzb, hybrid: how the far rays' screen tiles go to ranks: interleaved (tile mod "
+                  "ranks) | cost (contiguous runs of equal ray count)");
+}
 
 std::unique_ptr<Method> makeLzbMethod() { return std::make_unique<LzbMethod>(); }
 

@@ -5,6 +5,8 @@
 #include <cstdint>
 #include <string>
 
+#include "mpi/decomposition.hpp"
+
 namespace lzb {
 
 // The far-scene stage; each includes the ones above it (naive is the exception: it has no PVL).
@@ -46,6 +48,7 @@ struct LzbOptions {
   ZBufferKind pvlRender = ZBufferKind::kNative;   // faster on the paper experiment (LZB.md)
   int depthComplexityGrid = 0;  // diagnostic: G x G rays count every surface (0: off)
   FarRays farRays = FarRays::kEmbree;  // faster on the paper experiment (LZB.md)
+  TileDeal tileDeal = TileDeal::kInterleaved;  // how the far rays' tiles go to ranks
 
   bool dynamicPlane() const { return planeFraction == 0.0; }
   bool usesPvl() const { return stage != LzbStage::kNaive; }

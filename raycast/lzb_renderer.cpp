@@ -191,7 +191,6 @@ void LzbRenderer::markUnfinished(Frame& f, const Framebuffer& fb) {
   }
   f.unfinished = unfinished;
   plane_.observe(unfinished);
-  f.tiles = ScreenTiles(fb.width, fb.height).owned(f.share);
 }
 
 void LzbRenderer::projectFarObjects(Frame& f) {
@@ -210,6 +209,7 @@ void LzbRenderer::castFarRays(Frame& f) {
   const Camera& camera = *f.camera;
   const TileCastInput input{&camera, open_.data(), rayStart(camera, f.zClip), camera.farPlane(),
                             f.oor};
+  f.tiles = dealTiles(f, input);
   const long count = f.unfinished > 0 ? long(f.tiles.size()) : 0;
   std::vector<std::vector<uint32_t>> tilePixels(static_cast<size_t>(count));
   if (!lzb_.usesPvl()) {
@@ -227,6 +227,23 @@ void LzbRenderer::castFarRays(Frame& f) {
                          options_.threads);
   }
   for (auto& p : tilePixels) last_.castPixels.insert(last_.castPixels.end(), p.begin(), p.end());
+}
+
+std::vector<int> LzbRenderer::dealTiles(const Frame& f, const TileCastInput& input) const {
+  const ScreenTiles tiles(f.camera->width(), f.camera->height());
+  if (lzb_.tileDeal == TileDeal::kInterleaved || f.share.size == 1 || f.unfinished == 0)
+    return tiles.owned(f.share);
+  // Every rank counts every tile's rays alike (the mask and OOR objects are replicated).
+  std::vector<double> costs(size_t(tiles.count()));
+#pragma omp parallel num_threads(options_.threads)
+  {
+    TileScratch scratch;
+    TileCastCounts ignored;
+#pragma omp for schedule(dynamic, 16)
+    for (int t = 0; t < tiles.count(); ++t)
+      costs[size_t(t)] = double(countTileRays(tiles.tile(t), t, input, scratch, ignored));
+  }
+  return tiles.ownedByCost(costs, f.share);
 }
 
 template <typename CastTile>

@@ -58,7 +58,7 @@ class LzbRenderer : public Renderer {
     uint64_t farTriangles = 0;       // triangle entries of culled leaves reaching beyond zClip
     bool glPassOpen = false;         // the near pass's GL z-buffer awaits the PVL
     uint64_t unfinished = 0;         // pixels the near pass left empty
-    std::vector<int> tiles;          // this rank's screen tiles
+    std::vector<int> tiles;          // this rank's screen tiles (dealt by castFarRays)
     const OorObjects* oor = nullptr; // the OOR objects (oor and final stages)
     TileCastCounts tileCounts;
     bool farApart = false;     // farPass_ holds far-scene pixels still to composite with fb
@@ -114,6 +114,9 @@ class LzbRenderer : public Renderer {
   // castFarRays by engine, each filling tilePixels (per owned tile: the pixels cast).
   // Runs castTile(thread, rect, tile, k, scratch, counts, cast pixels) on this rank's k-th
   // owned tile, over the frame's threads, and sums the tiles' counts into f.tileCounts.
+  // This frame's tiles of this rank (--tile-deal): interleaved, or contiguous runs of equal ray
+  // count.
+  std::vector<int> dealTiles(const Frame& f, const TileCastInput& input) const;
   template <typename CastTile>
   void forOwnedTiles(Frame& f, std::vector<std::vector<uint32_t>>& tilePixels, CastTile castTile);
   void castNaiveRays(Frame& f, const TileCastInput& input,

@@ -331,24 +331,31 @@ TEST(LzbRenderer, SameImageForAnyRankAndThreadCount) {
       const Framebuffer threads = renderFrame(two, cam);
       EXPECT_EQ(threads.id, single.id) << toString(stage);
       EXPECT_EQ(threads.depth, single.depth) << toString(stage);
-      for (int size : {2, 3}) {
-        LzbRenderer ranks(scene, testing::lzbRenderOptions(2), o);
-        Framebuffer composite(cam.width(), cam.height());
-        double rays = 0.0;
-        for (int rank = 0; rank < size; ++rank) {
-          FrameStats stats;
-          compositeNearer(composite, renderFrame(ranks, cam, {rank, size}, &stats));
-          rays += stats.counts.value("rays_cast", 0.0);
-          // Every rank computes the plane alike: a shared figure, never in the summed counts.
-          EXPECT_TRUE(stats.shared.contains("plane_depth"));
-          EXPECT_FALSE(stats.counts.contains("plane_depth"));
+      for (int size : {2, 3})
+        for (TileDeal deal : {TileDeal::kInterleaved, TileDeal::kCost}) {
+          SCOPED_TRACE(toString(deal));
+          LzbOptions dealt = o;
+          dealt.tileDeal = deal;
+          LzbRenderer ranks(scene, testing::lzbRenderOptions(2), dealt);
+          Framebuffer composite(cam.width(), cam.height());
+          double rays = 0.0;
+          for (int rank = 0; rank < size; ++rank) {
+            FrameStats stats;
+            compositeNearer(composite, renderFrame(ranks, cam, {rank, size}, &stats));
+            const double mine = stats.counts.value("rays_cast", 0.0);
+            EXPECT_GT(mine, 0.0) << "rank " << rank << " of " << size << " casts a share";
+            rays += mine;
+            // Every rank computes the plane alike: a shared figure, never in the summed counts.
+            EXPECT_TRUE(stats.shared.contains("plane_depth"));
+            EXPECT_FALSE(stats.counts.contains("plane_depth"));
+          }
+          EXPECT_EQ(composite.id, single.id) << toString(stage) << " on " << size << " ranks";
+          EXPECT_EQ(composite.depth, single.depth)
+              << toString(stage) << " on " << size << " ranks";
+          FrameStats alone;
+          renderFrame(one, cam, {}, &alone);
+          EXPECT_EQ(rays, alone.counts.value("rays_cast", -1.0));
         }
-        EXPECT_EQ(composite.id, single.id) << toString(stage) << " on " << size << " ranks";
-        EXPECT_EQ(composite.depth, single.depth) << toString(stage) << " on " << size << " ranks";
-        FrameStats alone;
-        renderFrame(one, cam, {}, &alone);
-        EXPECT_EQ(rays, alone.counts.value("rays_cast", -1.0));
-      }
     }
 }
 

@@ -13,13 +13,17 @@ constexpr double kReachSlack = 1e-9;
 
 }  // namespace
 
-TileRays tileRaysToCast(const TileRect& r, int tileIndex, const TileCastInput& in,
-                        TileScratch& scratch, TileCastCounts& counts) {
+namespace {
+
+// scratch.mask (tile-local, row order): 1 where tile r casts a ray (an unfinished pixel, with OOR
+// only inside a polygon binned to the tile); with `reach`, scratch.reach: the deepest depthMax
+// of the polygons whose bounding boxes hold each pixel. False when no pixel is unfinished.
+bool markTileRays(const TileRect& r, int tileIndex, const TileCastInput& in, bool reach,
+                  TileScratch& scratch, TileCastCounts& counts) {
   const int width = in.camera->width();
   const int w = r.x1 - r.x0;
   std::vector<uint8_t>& mask = scratch.mask;
   if (mask.size() < size_t(r.pixels())) mask.resize(size_t(r.pixels()));
-  // mask: 1 unfinished, 0 finished.
   uint64_t open = 0;
   for (int y = r.y0; y < r.y1; ++y) {
     const uint8_t* row = in.unfinished + size_t(y) * size_t(width) + size_t(r.x0);
@@ -29,48 +33,59 @@ TileRays tileRaysToCast(const TileRect& r, int tileIndex, const TileCastInput& i
     open += rowOpen;
   }
   counts.unfinished += open;
-  TileRays rays;
-  if (open == 0) return rays;
-  std::vector<double>& reach = scratch.reach;
-  if (in.oor) {
-    std::vector<uint8_t>& inside = scratch.inside;
-    inside.assign(size_t(r.pixels()), 0);
-    reach.assign(size_t(r.pixels()), 0.0);
-    // Object by object: every bounding box holding a pixel raises its reach; the pixels inside
-    // the polygon are marked (the boolean matrix of the paper), a row span at a time.
-    for (uint32_t k : in.oor->tile(tileIndex)) {
-      const ScreenPolygon& p = in.oor->polygon(k);
-      const int xa = std::max(r.x0, int(std::ceil(double(p.x0) - 0.5)));
-      const int xb = std::min(r.x1 - 1, int(std::floor(double(p.x1) - 0.5)));
-      const int ya = std::max(r.y0, int(std::ceil(double(p.y0) - 0.5)));
-      const int yb = std::min(r.y1 - 1, int(std::floor(double(p.y1) - 0.5)));
-      for (int y = ya; y <= yb && xa <= xb; ++y) {
-        const size_t row = size_t((y - r.y0) * w - r.x0);
-        double* rowReach = reach.data() + row;
+  if (open == 0 || !in.oor) return open > 0;
+  std::vector<uint8_t>& inside = scratch.inside;
+  inside.assign(size_t(r.pixels()), 0);
+  if (reach) scratch.reach.assign(size_t(r.pixels()), 0.0);
+  // Object by object: every bounding box holding a pixel raises its reach; the pixels inside
+  // the polygon are marked (the boolean matrix of the paper), a row span at a time.
+  for (uint32_t k : in.oor->tile(tileIndex)) {
+    const ScreenPolygon& p = in.oor->polygon(k);
+    const int xa = std::max(r.x0, int(std::ceil(double(p.x0) - 0.5)));
+    const int xb = std::min(r.x1 - 1, int(std::floor(double(p.x1) - 0.5)));
+    const int ya = std::max(r.y0, int(std::ceil(double(p.y0) - 0.5)));
+    const int yb = std::min(r.y1 - 1, int(std::floor(double(p.y1) - 0.5)));
+    for (int y = ya; y <= yb && xa <= xb; ++y) {
+      const size_t row = size_t((y - r.y0) * w - r.x0);
+      if (reach) {
+        double* rowReach = scratch.reach.data() + row;
         for (int x = xa; x <= xb; ++x) rowReach[x] = std::max(rowReach[x], p.depthMax);
-        ++counts.polygonRows;
-        int first, last;
-        if (p.rowSpan(y, xa, xb, first, last))
-          std::fill(inside.data() + row + first, inside.data() + row + last + 1, uint8_t(1));
       }
+      ++counts.polygonRows;
+      int first, last;
+      if (p.rowSpan(y, xa, xb, first, last))
+        std::fill(inside.data() + row + first, inside.data() + row + last + 1, uint8_t(1));
     }
-    // Row order (tile-local index order): coherent neighbours for the rays.
-    for (int i = 0; i < r.pixels(); ++i)
-      if (mask[size_t(i)] & inside[size_t(i)]) {
-        const int x = r.x0 + i % w, y = r.y0 + i / w;
-        rays.pixels.push_back(uint32_t(size_t(y) * size_t(width) + size_t(x)));
-        rays.reach.push_back(std::min(in.tMax, reach[size_t(i)] * (1.0 + kReachSlack)));
-      }
-  } else {
-    for (int y = r.y0; y < r.y1; ++y)
-      for (int x = r.x0; x < r.x1; ++x)
-        if (mask[size_t((y - r.y0) * w + (x - r.x0))] == 1) {
-          rays.pixels.push_back(uint32_t(size_t(y) * size_t(width) + size_t(x)));
-          rays.reach.push_back(in.tMax);
-        }
   }
+  for (int i = 0; i < r.pixels(); ++i) mask[size_t(i)] &= inside[size_t(i)];
+  return true;
+}
+
+}  // namespace
+
+TileRays tileRaysToCast(const TileRect& r, int tileIndex, const TileCastInput& in,
+                        TileScratch& scratch, TileCastCounts& counts) {
+  TileRays rays;
+  if (!markTileRays(r, tileIndex, in, true, scratch, counts)) return rays;
+  const int width = in.camera->width(), w = r.x1 - r.x0;
+  // Row order (tile-local index order): coherent neighbours for the rays.
+  for (int i = 0; i < r.pixels(); ++i)
+    if (scratch.mask[size_t(i)]) {
+      const int x = r.x0 + i % w, y = r.y0 + i / w;
+      rays.pixels.push_back(uint32_t(size_t(y) * size_t(width) + size_t(x)));
+      rays.reach.push_back(
+          in.oor ? std::min(in.tMax, scratch.reach[size_t(i)] * (1.0 + kReachSlack)) : in.tMax);
+    }
   counts.cast += rays.pixels.size();
   return rays;
+}
+
+uint64_t countTileRays(const TileRect& r, int tileIndex, const TileCastInput& in,
+                       TileScratch& scratch, TileCastCounts& counts) {
+  if (!markTileRays(r, tileIndex, in, false, scratch, counts)) return 0;
+  uint32_t n = 0;
+  for (int i = 0; i < r.pixels(); ++i) n += scratch.mask[size_t(i)];
+  return n;
 }
 
 void castTilePvl(RayWalker& walker, const TileRect& r, int tileIndex, const TileCastInput& in,

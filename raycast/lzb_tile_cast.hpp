@@ -55,6 +55,9 @@ struct TileScratch {
 // to the tile.
 TileRays tileRaysToCast(const TileRect& r, int tileIndex, const TileCastInput& in,
                         TileScratch& scratch, TileCastCounts& counts);
+// How many rays tileRaysToCast would cast (the cost that --tile-deal cost deals by).
+uint64_t countTileRays(const TileRect& r, int tileIndex, const TileCastInput& in,
+                       TileScratch& scratch, TileCastCounts& counts);
 
 // PVL finding for one tile with the walker (its coherence state is reset first). The pixels
 // cast go to *cast when given.

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "src/core/error.hpp"
+#include "raycast/lzb_method.hpp"
 #include "src/hybrid/hybrid_renderer.hpp"
 
 namespace lzb {
@@ -32,6 +33,7 @@ class HybridMethod : public Method {
                     "lzb, hybrid: partition plane: auto (coarse ray casting, mean depth), cost "
                     "(coarse ray casting, cost model) or a fraction F in (0, 1) of the frustum "
                     "depth");
+    addTileDealOption(c, tileDeal_);
   }
   void validate() override {
     params_.oversample = oversample_;
@@ -45,6 +47,7 @@ class HybridMethod : public Method {
             "expected drop or keep, got '" + backfaces_ + "'");
     params_.dropBackfaces = backfaces_ == "drop";
     parsePlane(plane_, "--plane", params_.lzb);
+    params_.lzb.tileDeal = parseTileDeal(tileDeal_, "--tile-deal");
     params_.validate();
   }
   // runs/tradeoff/README.md "Presets".
@@ -60,7 +63,7 @@ class HybridMethod : public Method {
 
  private:
   double oversample_ = 1.0;
-  std::string fallback_ = "auto", backfaces_ = "drop", plane_ = "cost";
+  std::string fallback_ = "auto", backfaces_ = "drop", plane_ = "cost", tileDeal_ = "interleaved";
   hybrid::HybridParams params_;
 };
 

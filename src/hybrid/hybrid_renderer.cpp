@@ -34,7 +34,8 @@ nlohmann::json HybridParams::toJson() const {
           {"backfaces", dropBackfaces ? "drop" : "keep"},
           {"plane", lzb.dynamicPlane() ? nlohmann::json(lzb.costPlane ? "cost" : "auto")
                                        : nlohmann::json(lzb.planeFraction)},
-          {"lzb_stage", toString(lzb.stage)}};
+          {"lzb_stage", toString(lzb.stage)},
+          {"tile_deal", toString(lzb.tileDeal)}};
 }
 
 namespace {
@@ -153,7 +154,7 @@ void HybridRenderer::countPixels(const LzbRenderer::Frame& f, const Framebuffer&
                                  FrameStats& stats) const {
   const ScreenTiles tiles(fb.width, fb.height);
   const std::vector<uint8_t>& open = lzb_.unfinishedMask();
-  const std::vector<int> mine = tiles.owned(f.share);
+  const std::vector<int>& mine = f.tiles;
   uint64_t samplePixels = 0, pvlPixels = 0;
 #pragma omp parallel for schedule(static) num_threads(options_.threads) reduction(+ : samplePixels, pvlPixels)
   for (size_t k = 0; k < mine.size(); ++k) {
