@@ -91,7 +91,7 @@ def write_csv(path, rows, fields, commands):
     """CSV with the command lines that made it as leading # lines."""
     with open(path, "w", newline="") as f:
         f.write(f"# made by: python3 {' '.join(sys.argv).replace(ROOT + '/', '')}\n")
-        for c in commands:
+        for c in dict.fromkeys(commands):  # once each (a --keep rerun repeats its commands)
             f.write(f"# {c}\n")
         w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
         w.writeheader()
@@ -102,6 +102,14 @@ def write_csv(path, rows, fields, commands):
 def read_csv(path):
     with open(path) as f:
         return list(csv.DictReader(line for line in f if not line.startswith("#")))
+
+
+def read_kept(path):
+    """--keep: an existing study CSV's rows and the commands that made them, for a run of some
+    scenes or methods to replace only its own rows."""
+    with open(path) as f:
+        commands = [line[2:].rstrip("\n") for line in f if line.startswith("# ")][1:]
+    return read_csv(path), commands
 
 
 def gnuplot(script):

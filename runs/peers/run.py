@@ -94,7 +94,8 @@ def pvbatch(scene, report, w, h, commands):
 
 def run():
     rows, commands = [], []
-    kept_rows, kept_commands = kept() if "--keep" in sys.argv else ([], [])
+    kept_rows, kept_commands = (common.read_kept(os.path.join(HERE, "peers.csv"))
+                                if "--keep" in sys.argv else ([], []))
     measured = [dict(limits(), when="start")]
     for name in option("scenes", list(SCENES)):
         scene, w, h, frames, zframes = SCENES[name]
@@ -147,15 +148,6 @@ def run():
             save(ordered(kept_rows + rows), measured, kept_commands + commands)  # a long study keeps its part
     measured.append(dict(limits(), when="end"))
     save(ordered(kept_rows + rows), measured, kept_commands + commands)
-
-
-def kept():
-    """--keep: the existing CSV's rows and commands, for a run of some scenes or methods to replace
-    only its own rows (the limits are this run's)."""
-    path = os.path.join(HERE, "peers.csv")
-    with open(path) as f:
-        commands = [line[2:].rstrip("\n") for line in f if line.startswith("# ")][1:]
-    return common.read_csv(path), commands
 
 
 def ordered(rows):

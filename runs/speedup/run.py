@@ -9,6 +9,7 @@ mean over ranks).
 
 Usage: python3 runs/speedup/run.py [--quick] [--plot-only] [--methods=a,b] [--scenes=a,b]
                                    [--configs=1x1,2x1,...]   (ranks x threads; the first is the base)
+                                   [--keep]   (replace only the rerun scenes' and methods' rows)
        (from the repository root, after scripts/build.sh and scripts/fetch-test-meshes.sh;
        plots need gnuplot). The same command on a cluster: see runs/speedup/README.md.
 Writes runs/speedup/speedup.csv, stages.csv, speedup.png and stages.png.
@@ -61,6 +62,9 @@ def breakdown(frames):
 
 
 def save(rows, stage_rows, commands):
+    # Kept rows (--keep) and new ones in the study's order: scene, size, method (stable: configs).
+    key = lambda r: (list(SCENES).index(r["scene"]), int(r["width"]), METHODS.index(r["method"]))  # noqa: E731
+    rows, stage_rows = sorted(rows, key=key), sorted(stage_rows, key=key)
     common.write_csv(os.path.join(HERE, "speedup.csv"), rows,
                      ["scene", "triangles", "width", "height", "method", "ranks", "threads",
                       "oversubscribed", "frame_s", "render_s", "composite_s", "shade_s",
@@ -75,6 +79,12 @@ def run():
     scenes = option("scenes", list(SCENES))
     configs = [tuple(int(v) for v in c.split("x")) for c in option("configs", [])] or CONFIGS
     rows, stage_rows, commands = [], [], []
+    if "--keep" in sys.argv:
+        rows, commands = common.read_kept(os.path.join(HERE, "speedup.csv"))
+        stage_rows = common.read_csv(os.path.join(HERE, "stages.csv"))
+        rerun = lambda r: r["scene"] in scenes and r["method"] in methods  # noqa: E731
+        rows = [r for r in rows if not rerun(r)]
+        stage_rows = [r for r in stage_rows if not rerun(r)]
     for scene in scenes:
         for (w, h) in SIZES:
             for method in methods:
