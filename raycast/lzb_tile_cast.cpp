@@ -17,9 +17,11 @@ namespace {
 
 // scratch.mask (tile-local, row order): 1 where tile r casts a ray (an unfinished pixel, with OOR
 // only inside a polygon binned to the tile); with `reach`, scratch.reach: the deepest depthMax
-// of the polygons whose bounding boxes hold each pixel. False when no pixel is unfinished.
+// of the polygons whose bounding boxes hold each pixel. False when the tile casts nothing.
 bool markTileRays(const TileRect& r, int tileIndex, const TileCastInput& in, bool reach,
                   TileScratch& scratch, TileCastCounts& counts) {
+  // A tile no far object projects onto casts nothing (the sky above a street view).
+  if (in.oor && in.oor->tile(tileIndex).empty()) return false;
   const int width = in.camera->width();
   const int w = r.x1 - r.x0;
   std::vector<uint8_t>& mask = scratch.mask;
@@ -32,7 +34,6 @@ bool markTileRays(const TileRect& r, int tileIndex, const TileCastInput& in, boo
     for (int x = 0; x < w; ++x) rowOpen += row[x];
     open += rowOpen;
   }
-  counts.unfinished += open;
   if (open == 0 || !in.oor) return open > 0;
   std::vector<uint8_t>& inside = scratch.inside;
   inside.assign(size_t(r.pixels()), 0);

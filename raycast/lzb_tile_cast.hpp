@@ -17,11 +17,9 @@
 namespace lzb {
 
 struct TileCastCounts {
-  uint64_t unfinished = 0;    // pixels of the tile the near pass left empty
   uint64_t cast = 0;          // rays cast (unfinished pixels, inside some polygon with OOR)
   uint64_t polygonRows = 0;   // OOR: rows of polygons intersected with the tile's pixel rows
   void add(const TileCastCounts& o) {
-    unfinished += o.unfinished;
     cast += o.cast;
     polygonRows += o.polygonRows;
   }
