@@ -29,6 +29,12 @@ std::string toString(TileDeal deal) {
   return deal == TileDeal::kCost ? "cost" : "interleaved";
 }
 
+std::string tileDealText(TileDeal deal) {
+  return deal == TileDeal::kCost
+             ? "by cost (contiguous runs of equal ray count, counted alike on every rank)"
+             : "interleaved (tile index mod ranks == rank)";
+}
+
 std::vector<int> ScreenTiles::ownedByCost(std::span<const double> costs,
                                           const WorkShare& share) const {
   const std::vector<uint32_t> mine = dealByCost(costs, share);

@@ -42,6 +42,8 @@ enum class TileDeal { kInterleaved, kCost };
 // Throws InputError naming `field` on an unknown name.
 TileDeal parseTileDeal(const std::string& text, const std::string& field);
 std::string toString(TileDeal deal);
+// How the deal reads in a renderer's decomposition() text.
+std::string tileDealText(TileDeal deal);
 
 class ScreenTiles {
  public:

@@ -86,9 +86,9 @@ std::string LzbRenderer::decomposition() const {
          "on every rank) to know the unfinished pixels; screen tiles of " +
          std::to_string(ScreenTiles::kDefaultSide) + "x" +
          std::to_string(ScreenTiles::kDefaultSide) +
-         " pixels are dealt to ranks interleaved (tile index mod ranks == rank); each rank casts "
-         "the rays of its tiles and z-buffers its own PVL part; the root composites by (depth, "
-         "id)";
+         " pixels are dealt to ranks " + tileDealText(lzb_.tileDeal) +
+         "; each rank casts the rays of its tiles and z-buffers its own PVL part; the root "
+         "composites by (depth, id)";
 }
 
 FrameStats LzbRenderer::setupStats() const {

@@ -66,7 +66,8 @@ std::string HybridRenderer::decomposition() const {
          "to ranks as contiguous runs of equal sample count in cull order; screen tiles of " +
          std::to_string(ScreenTiles::kDefaultSide) + "x" +
          std::to_string(ScreenTiles::kDefaultSide) +
-         " pixels are dealt interleaved for the rays and each rank z-buffers its own PVL part; "
+         " pixels are dealt for the rays " + tileDealText(params_.lzb.tileDeal) +
+         " and each rank z-buffers its own PVL part; "
          "the root composites by (depth, id)";
 }
 
