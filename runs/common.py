@@ -128,3 +128,24 @@ def datafile(blocks):
         f.write("\n\n")
     f.close()
     return f.name
+
+
+def stacked_bars(path, title, labels, rows, columns, size="1200,550"):
+    """A PNG of stacked bars (gnuplot rowstacked histogram), one bar per label: rows are (index,
+    values...), `columns` the plot command's column list with DATA standing for the data file."""
+    data = datafile([rows])
+    xtics = ", ".join(f"'{l}' {i}" for i, l in enumerate(labels))
+    gnuplot(f"""
+set terminal pngcairo size {size} font ',10'
+set output '{path}'
+set title '{title}'
+set style data histograms
+set style histogram rowstacked
+set style fill solid 0.8 border -1
+set boxwidth 0.7
+set xtics ({xtics}) rotate by -30
+set ylabel 'ms'
+set key outside right
+set grid y
+plot {columns.replace("DATA", data)}
+""")

@@ -166,22 +166,12 @@ unset multiplot
         blocks.append((len(labels) - 1, *parts, max(0.0, float(r["frame_s"]) * 1e3 - sum(parts))))
     if not blocks:
         return
-    data = common.datafile([blocks])
-    xtics = ", ".join(f"'{l}' {i}" for i, l in enumerate(labels))
-    common.gnuplot(f"""
-set terminal pngcairo size 1200,550 font ',10'
-set output '{os.path.join(HERE, "stages.png")}'
-set title 'hybrid on the city: where a frame goes (ms, medians; ranks x threads)'
-set style data histograms
-set style histogram rowstacked
-set style fill solid 0.8 border -1
-set boxwidth 0.7
-set xtics ({xtics}) rotate by -30
-set ylabel 'ms'
-set key outside right
-set grid y
-plot '{data}' using 2 title 'replicated stages', '' using 3 title 'split stages (pvl find + render, points)', '' using 4 title 'wait (imbalance)', '' using 5 title 'composite', '' using 6 title 'shade (root)', '' using 7 title 'untimed'
-""")
+    common.stacked_bars(
+        os.path.join(HERE, "stages.png"),
+        "hybrid on the city: where a frame goes (ms, medians; ranks x threads)", labels, blocks,
+        "'DATA' using 2 title 'replicated stages', '' using 3 title 'split stages (pvl find + "
+        "render, points)', '' using 4 title 'wait (imbalance)', '' using 5 title 'composite', '' "
+        "using 6 title 'shade (root)', '' using 7 title 'untimed'")
 
 
 if __name__ == "__main__":

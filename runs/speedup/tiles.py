@@ -75,22 +75,12 @@ def plot():
         blocks.append((len(labels) - 1, float(r["pvl_find_mean_s"]) * 1e3,
                        (float(r["pvl_find_max_s"]) - float(r["pvl_find_mean_s"])) * 1e3,
                        float(r["frame_s"]) * 1e3))
-    data = common.datafile([blocks])
-    xtics = ", ".join(f"'{l}' {i}" for i, l in enumerate(labels))
-    common.gnuplot(f"""
-set terminal pngcairo size 1400,600 font ',10'
-set output '{os.path.join(HERE, "tiles.png")}'
-set title 'far-ray tiles dealt interleaved or by cost: the ray stage (mean rank + excess of the slowest) and the frame (ms, medians; * oversubscribed)'
-set style data histograms
-set style histogram rowstacked
-set style fill solid 0.8 border -1
-set boxwidth 0.6
-set xtics ({xtics}) rotate by -35
-set ylabel 'ms'
-set key outside right
-set grid y
-plot '{data}' using 2 title 'pvl_find, mean rank', '' using 3 title 'pvl_find, slowest rank beyond the mean', '' using 0:4 with points pt 7 ps 1.5 title 'frame'
-""")
+    common.stacked_bars(
+        os.path.join(HERE, "tiles.png"),
+        "far-ray tiles dealt interleaved or by cost: the ray stage (mean rank + excess of the "
+        "slowest) and the frame (ms, medians; * oversubscribed)", labels, blocks,
+        "'DATA' using 2 title 'pvl find, mean rank', '' using 3 title 'pvl find, slowest rank "
+        "beyond the mean', '' using 0:4 with points pt 7 ps 1.5 title 'frame'", size="1400,600")
 
 
 if __name__ == "__main__":
