@@ -160,16 +160,25 @@ void HybridRenderer::countPixels(const LzbRenderer::Frame& f, const Framebuffer&
 #pragma omp parallel for schedule(static) num_threads(options_.threads) reduction(+ : samplePixels, pvlPixels)
   for (size_t k = 0; k < mine.size(); ++k) {
     const TileRect r = tiles.tile(mine[k]);
-    for (int y = r.y0; y < r.y1; ++y)
+    for (int y = r.y0; y < r.y1; ++y) {
+      if (!pointsDrawn_) {  // no samples: the PVL drew every covered unfinished pixel
+        const size_t row = fb.index(r.x0, y);
+        const uint8_t* o = open.data() + row;
+        const uint64_t* id = fb.id.data() + row;
+        uint32_t n = 0;  // branch-free, so it vectorizes (the branchy loop: 4 ms at 1080p)
+        for (int x = 0; x < r.x1 - r.x0; ++x) n += o[x] & uint8_t(id[x] != kNoId);
+        pvlPixels += n;
+        continue;
+      }
       for (int x = r.x0; x < r.x1; ++x) {
         const size_t i = fb.index(x, y);
         if (!open[i]) continue;
-        if (pointsDrawn_ && points_.covered(i) &&
-            nearer(points_.depth[i], points_.id[i], fb.depth[i], fb.id[i]))
+        if (points_.covered(i) && nearer(points_.depth[i], points_.id[i], fb.depth[i], fb.id[i]))
           ++samplePixels;
         else if (fb.covered(i))
           ++pvlPixels;
       }
+    }
   }
   stats.setShared("near_pixels", double(fb.size() - f.unfinished));
   stats.addCount("sample_pixels", double(samplePixels));

@@ -67,6 +67,11 @@ TEST(HybridRenderer, WithNothingSampledCastsLikeLzbEveryFrame) {
     for (const char* k : {"rays_cast", "rays_hit", "pvl_size"})
       EXPECT_EQ(hs.counts.value(k, -1.0), ls.counts.value(k, -2.0)) << k << ", frame " << f;
     EXPECT_EQ(h.id, l.id) << "frame " << f;
+    // Every covered pixel was finished by the near pass or the PVL, none by samples.
+    EXPECT_EQ(hs.counts.value("sample_pixels", -1.0), 0.0) << "frame " << f;
+    EXPECT_EQ(hs.shared.value("near_pixels", 0.0) + hs.counts.value("pvl_pixels", 0.0),
+              double(h.coveredCount()))
+        << "frame " << f;
   }
 }
 
