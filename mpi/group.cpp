@@ -1,7 +1,10 @@
 #include "mpi/group.hpp"
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 
 namespace lzb::mpi {
 
@@ -42,7 +45,27 @@ int SubGroups::rootOf(int k) const {
   return int((int64_t(k) * parentSize_ + count_ - 1) / count_);
 }
 
-Session::Session(int* argc, char*** argv, bool threadsCallMpi) {
+namespace {
+
+// Whether a launcher (mpiexec, srun) started this process: it then owns the session folder.
+bool launched() {
+  return std::getenv("OMPI_COMM_WORLD_SIZE") || std::getenv("PMIX_RANK") || std::getenv("PMI_RANK");
+}
+
+// A fresh folder under $TMPDIR (else /tmp) for a singleton's session files, named in Open MPI's
+// MCA variable; empty when launched, when the user chose a folder, or when none can be made.
+std::string privateSessionFolder() {
+  if (launched() || std::getenv("OMPI_MCA_orte_tmpdir_base")) return "";
+  const char* tmp = std::getenv("TMPDIR");
+  std::string folder = std::string(tmp && *tmp ? tmp : "/tmp") + "/lzb-mpi-XXXXXX";
+  if (!mkdtemp(folder.data())) return "";
+  setenv("OMPI_MCA_orte_tmpdir_base", folder.c_str(), 1);
+  return folder;
+}
+
+}  // namespace
+
+Session::Session(int* argc, char*** argv, bool threadsCallMpi) : privateTmp_(privateSessionFolder()) {
   int provided = 0;
   // OpenMP threads never call MPI; only the node server's threads need more than FUNNELED.
   LZB_MPI_CALL(MPI_Init_thread(argc, argv, threadsCallMpi ? MPI_THREAD_MULTIPLE : MPI_THREAD_FUNNELED,
@@ -62,6 +85,8 @@ Session::~Session() {
   int finalized = 0;
   MPI_Finalized(&finalized);
   if (!finalized) MPI_Finalize();
+  std::error_code ignored;  // a folder left behind is harmless
+  if (!privateTmp_.empty()) std::filesystem::remove_all(privateTmp_, ignored);
 }
 
 }  // namespace lzb::mpi

@@ -50,12 +50,19 @@ class SubGroups {
 // threadsCallMpi asks for MPI_THREAD_MULTIPLE (a thread besides the main one calls MPI: the
 // sample tree's node server and its clients' loaders); else MPI_THREAD_FUNNELED, which saves
 // Open MPI's locking on every call. Either way at least FUNNELED is required.
+// A process that no launcher started (a singleton) keeps Open MPI's session files in a folder of
+// its own, removed on destruction: Open MPI 4.1 shares /tmp/ompi.<host>.<uid> between jobs, and a
+// job ending removes it while another one starting creates it ("mkdir ... File exists", and
+// MPI_Init fails), so two lzb commands started at once could fail.
 class Session {
  public:
   Session(int* argc, char*** argv, bool threadsCallMpi = false);
   ~Session();
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
+
+ private:
+  std::string privateTmp_;  // the singleton's own session folder; empty when launched
 };
 
 }  // namespace lzb::mpi

@@ -1,6 +1,7 @@
 #include "tests/cli_runner.hpp"
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <cstdio>
@@ -18,6 +19,14 @@ RunResult runLzb(const std::string& args, const std::string& shellPrefix) {
   const int raw = pclose(pipe);
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
   return r;
+}
+
+std::string mpiexecPrefix(int ranks, int timeoutSeconds) {
+  const std::filesystem::path sessions =
+      std::filesystem::path(LZB_WORK_DIR) / "mpi-sessions" / std::to_string(getpid());
+  return "OMPI_MCA_orte_tmpdir_base=" + sessions.string() + " " +
+         (timeoutSeconds > 0 ? "timeout " + std::to_string(timeoutSeconds) + " " : "") +
+         LZB_MPIEXEC + " -n " + std::to_string(ranks) + " --oversubscribe ";
 }
 
 std::filesystem::path freshDir(const std::string& name) {

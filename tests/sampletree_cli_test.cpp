@@ -282,13 +282,13 @@ TEST(SampleTreeCli, OutOfCoreCorruptionFoundAtRenderTimeEndsTheJob) {
   EXPECT_NE(one.output.find(store.string()), std::string::npos) << one.output;
   EXPECT_NE(one.output.find("corrupted"), std::string::npos) << one.output;
   const RunResult two = runLzb(args + (dir / "two").string(),
-                               "timeout 120 " + std::string(LZB_MPIEXEC) + " -n 2 --oversubscribe ");
+                               mpiexecPrefix(2, 120));
   EXPECT_EQ(two.status, 2) << two.output;
   EXPECT_NE(two.output.find("corrupted"), std::string::npos) << two.output;
   // The node server meets the damage: it ends the job, naming the store; the render rank, waiting
   // for the reply, does not hang.
   const RunResult served = runLzb(args + (dir / "served").string() + " --node-server",
-                                  "timeout 120 " + std::string(LZB_MPIEXEC) + " -n 2 --oversubscribe ");
+                                  mpiexecPrefix(2, 120));
   EXPECT_EQ(served.status, 2) << served.output;
   EXPECT_NE(served.output.find(store.string()), std::string::npos) << served.output;
   EXPECT_NE(served.output.find("corrupted"), std::string::npos) << served.output;
@@ -300,7 +300,7 @@ TEST(SampleTreeCli, OutOfCoreCorruptionFoundAtRenderTimeEndsTheJob) {
 TEST(SampleTreeCli, NodeServerRefusals) {
   const fs::path dir = freshDir("sampletree_node_server_refused");
   const fs::path store = buildStore(dir, kScene, "--leaf-triangles 8");
-  const std::string two = "timeout 120 " + std::string(LZB_MPIEXEC) + " -n 2 --oversubscribe ";
+  const std::string two = mpiexecPrefix(2, 120);
   const std::string render = "render " + kScene + " --method sampletree --node-server" + kView;
   const std::string tree = " --tree " + store.string();
   struct Case {
@@ -333,7 +333,7 @@ TEST(SampleTreeCli, NodeServerRefusals) {
   // A refusal after the server started serving (a cache below the largest node, on 3 ranks): every
   // render rank says goodbye, the server stops, no rank hangs; a store of another scene is refused
   // on every rank before.
-  const std::string three = "timeout 120 " + std::string(LZB_MPIEXEC) + " -n 3 --oversubscribe ";
+  const std::string three = mpiexecPrefix(3, 120);
   const RunResult small = runLzb(render + tree + " --cache-mb 0.0001 --out " + (dir / "small").string(), three);
   EXPECT_EQ(small.status, 2) << small.output;
   EXPECT_NE(small.output.find("--cache-mb"), std::string::npos) << small.output;

@@ -140,12 +140,13 @@ struct Outcome {
 
 // Renders `scene` with `method` and `args` against the raycast reference into a fresh folder.
 Outcome render(const std::string& name, const Scene& scene, const std::string& method,
-               const std::string& args, const std::string& launcher = "") {
+               const std::string& args, int ranks = 1) {
   const fs::path dir = freshDir("stability_" + name + "_" + method);
   std::ofstream(dir / "scene.toml") << tomlOf(scene, dir);
   Outcome o;
   o.out = dir / "out";
-  const std::string prefix = "timeout " + std::to_string(kHangSeconds) + " " + launcher + " ";
+  const std::string prefix = ranks > 1 ? mpiexecPrefix(ranks, kHangSeconds)
+                                       : "timeout " + std::to_string(kHangSeconds) + " ";
   const RunResult r =
       runLzb("render " + (dir / "scene.toml").string() + " --method " + method +
                  " --reference raycast --quiet --out " + o.out.string() + " " + args,
@@ -300,8 +301,7 @@ TEST_P(Stability, KeepsItsAssertedBehaviour) {
   EXPECT_EQ(readFrameExr(threads.out / "frame_0000.exr").id, one.id) << "2 threads";
   for (int ranks : {2, 3}) {
     const Outcome split =
-        render(caseName + "_r" + std::to_string(ranks), c.scene(), method, c.args + " --threads 1",
-               std::string(LZB_MPIEXEC) + " --oversubscribe -n " + std::to_string(ranks));
+        render(caseName + "_r" + std::to_string(ranks), c.scene(), method, c.args + " --threads 1", ranks);
     ASSERT_EQ(split.status, 0) << split.output;
     EXPECT_EQ(readFrameExr(split.out / "frame_0000.exr").id, one.id) << ranks << " ranks";
   }
