@@ -52,17 +52,26 @@ void setRect(std::vector<int>& v, size_t r, const Rect& x) {
   v[4 * r] = x.x0, v[4 * r + 1] = x.y0, v[4 * r + 2] = x.x1, v[4 * r + 3] = x.y1;
 }
 
+// A pixel carries information exactly when its depth is not kEmptyDepth (every writer leaves
+// kEmptyDepth where it leaves kNoId, framebuffer.hpp): the touched pixels are found from the
+// 4-byte depths, half the bytes of the IDs.
+const uint32_t kEmptyBits = std::bit_cast<uint32_t>(kEmptyDepth);
+
+const uint32_t* depthBits(const Framebuffer& fb, int y) {
+  return reinterpret_cast<const uint32_t*>(fb.depth.data()) + size_t(y) * size_t(fb.width);
+}
+
 // The bounding rectangle of the covered pixels (empty when none is).
 Rect touchedRect(const Framebuffer& fb) {
   int x0 = fb.width, y0 = fb.height, x1 = 0, y1 = 0;
 #pragma omp parallel for schedule(static) reduction(min : x0, y0) reduction(max : x1, y1)
   for (int y = 0; y < fb.height; ++y) {
-    const uint64_t* row = fb.id.data() + size_t(y) * size_t(fb.width);
+    const uint32_t* row = depthBits(fb, y);
     int first = 0;
-    while (first < fb.width && row[first] == kNoId) ++first;
+    while (first < fb.width && row[first] == kEmptyBits) ++first;
     if (first == fb.width) continue;
     int last = fb.width - 1;
-    while (row[last] == kNoId) --last;
+    while (row[last] == kEmptyBits) --last;
     x0 = std::min(x0, first), x1 = std::max(x1, last + 1);
     y0 = std::min(y0, y), y1 = std::max(y1, y + 1);
   }
@@ -295,48 +304,79 @@ double directSend(const Group& g, Framebuffer& fb, const Rect& u, const Rect& to
   return bytes;
 }
 
-// Per tile: 1 when some pixel holds an ID. Row by row over the whole frame, each tile's span
+// Per tile: 1 when some pixel is covered. Row by row over the whole frame, each tile's span
 // OR-ed without an early exit (it vectorizes; a per-pixel test with an exit took milliseconds on
-// a mostly empty 1080p frame).
+// a mostly empty 1080p frame), the spans stepped by the tile side (a tile(index) call per span,
+// two divisions, took longer than reading the pixels).
 std::vector<uint8_t> touchedTiles(const Framebuffer& fb, const ScreenTiles& tiles) {
   std::vector<uint8_t> touched(size_t(tiles.count()), 0);
-  const int cols = tiles.columns();
+  const int cols = tiles.columns(), side = tiles.side();
 #pragma omp parallel for schedule(static)
   for (int ty = 0; ty < tiles.rows(); ++ty) {
-    const TileRect band = tiles.tile(ty * cols);
-    for (int y = band.y0; y < band.y1; ++y) {
-      const uint64_t* row = fb.id.data() + size_t(y) * size_t(fb.width);
+    uint8_t* band = touched.data() + size_t(ty) * size_t(cols);
+    const int y1 = std::min((ty + 1) * side, fb.height);
+    for (int y = ty * side; y < y1; ++y) {
+      const uint32_t* row = depthBits(fb, y);
       for (int tx = 0; tx < cols; ++tx) {
-        const TileRect r = tiles.tile(ty * cols + tx);
-        uint64_t any = 0;
-        for (int x = r.x0; x < r.x1; ++x) any |= row[x] ^ kNoId;
-        touched[size_t(ty * cols + tx)] |= uint8_t(any != 0);
+        const int x0 = tx * side, x1 = std::min(x0 + side, fb.width);
+        uint32_t any = 0;
+        for (int x = x0; x < x1; ++x) any |= row[x] ^ kEmptyBits;
+        band[tx] |= uint8_t(any != 0);
       }
     }
   }
   return touched;
 }
 
+// The touched tiles of this rank, one after the other: the tile's index, then its keys row by
+// row (unaligned in the byte buffer, so copied by memcpy). Packed in parallel over the tiles.
+template <class K>
+std::vector<char> packTiles(const Framebuffer& fb, const ScreenTiles& tiles) {
+  const std::vector<uint8_t> touched = touchedTiles(fb, tiles);
+  std::vector<int> list;
+  for (int t = 0; t < tiles.count(); ++t)
+    if (touched[size_t(t)]) list.push_back(t);
+  std::vector<size_t> at(list.size() + 1, 0);
+  for (size_t k = 0; k < list.size(); ++k)
+    at[k + 1] = at[k] + sizeof(int) + size_t(tiles.tile(list[k]).pixels()) * sizeof(K);
+  std::vector<char> out(at.back());
+#pragma omp parallel for schedule(static)
+  for (size_t k = 0; k < list.size(); ++k) {
+    const TileRect r = tiles.tile(list[k]);
+    char* p = out.data() + at[k];
+    std::memcpy(p, &list[k], sizeof(int));
+    p += sizeof(int);
+    for (int y = r.y0; y < r.y1; ++y)
+      for (int x = r.x0; x < r.x1; ++x, p += sizeof(K)) {
+        const K key = Keys<K>::of(fb, fb.index(x, y));
+        std::memcpy(p, &key, sizeof(K));
+      }
+  }
+  return out;
+}
+
+// Every rank's packed tiles into the root's keys: the nearer key per pixel.
+template <class K>
+void mergeTiles(const std::vector<char>& all, const ScreenTiles& tiles, Framebuffer& fb) {
+  for (size_t at = 0; at < all.size();) {
+    int t;
+    std::memcpy(&t, all.data() + at, sizeof(int));
+    at += sizeof(int);
+    const TileRect r = tiles.tile(t);
+    for (int y = r.y0; y < r.y1; ++y)
+      for (int x = r.x0; x < r.x1; ++x, at += sizeof(K)) {
+        K key;
+        std::memcpy(&key, all.data() + at, sizeof(K));
+        const size_t i = fb.index(x, y);
+        Keys<K>::put(fb, i, Keys<K>::min(Keys<K>::of(fb, i), key));
+      }
+  }
+}
+
 template <class K>
 double tileSend(const Group& g, Framebuffer& fb) {
-  const Keys<K> k;
   const ScreenTiles tiles(fb.width, fb.height);
-  // This rank's touched tiles: index, then the tile's keys row by row.
-  std::vector<char> mine;
-  std::vector<K> tile;
-  if (!g.root()) {
-    const std::vector<uint8_t> touched = touchedTiles(fb, tiles);
-    for (int t = 0; t < tiles.count(); ++t) {
-      if (!touched[size_t(t)]) continue;
-      const TileRect r = tiles.tile(t);
-      tile.resize(size_t(r.pixels()));
-      pack(fb, Rect{r.x0, r.y0, r.x1, r.y1}, tile.data());
-      const size_t at = mine.size();
-      mine.resize(at + sizeof(int) + tile.size() * sizeof(K));
-      std::memcpy(mine.data() + at, &t, sizeof(int));
-      std::memcpy(mine.data() + at + sizeof(int), tile.data(), tile.size() * sizeof(K));
-    }
-  }
+  const std::vector<char> mine = g.root() ? std::vector<char>() : packTiles<K>(fb, tiles);
   const int bytes = int(mine.size());
   std::vector<int> counts(g.root() ? size_t(g.size) : 0), displs(counts.size());
   LZB_MPI_CALL(MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, g.comm));
@@ -349,22 +389,7 @@ double tileSend(const Group& g, Framebuffer& fb) {
   LZB_MPI_CALL(MPI_Gatherv(mine.data(), bytes, MPI_BYTE, all.data(), counts.data(), displs.data(),
                            MPI_BYTE, 0, g.comm));
   if (!g.root()) return double(bytes);
-  for (size_t at = 0; at < all.size();) {
-    int t;
-    std::memcpy(&t, all.data() + at, sizeof(int));
-    const TileRect r = tiles.tile(t);
-    tile.resize(size_t(r.pixels()));
-    std::memcpy(tile.data(), all.data() + at + sizeof(int), tile.size() * sizeof(K));
-    at += sizeof(int) + tile.size() * sizeof(K);
-    size_t j = 0;
-    for (int y = r.y0; y < r.y1; ++y)
-      for (int x = r.x0; x < r.x1; ++x, ++j) {
-        const size_t i = fb.index(x, y);
-        const K nearest = Keys<K>::min(Keys<K>::of(fb, i), tile[j]);
-        Keys<K>::put(fb, i, nearest);
-      }
-  }
-  (void)k;
+  mergeTiles<K>(all, tiles, fb);
   return 0.0;
 }
 

@@ -52,6 +52,7 @@ class ScreenTiles {
   ScreenTiles(int width, int height, int side = kDefaultSide)
       : width_(width), height_(height), side_(side) {}
 
+  int side() const { return side_; }
   int columns() const { return (width_ + side_ - 1) / side_; }
   int rows() const { return (height_ + side_ - 1) / side_; }
   int count() const { return columns() * rows(); }

@@ -14,6 +14,8 @@ namespace lzb {
 constexpr float kEmptyDepth = std::numeric_limits<float>::infinity();
 constexpr Rgba8 kBackground = packRgba8(0, 0, 0, 0);
 
+// A pixel is empty exactly when its ID is kNoId and its depth kEmptyDepth: writers set the two
+// together (compositing finds the touched pixels by depth alone, mpi/composite.cpp).
 struct Framebuffer {
   int width = 0, height = 0;
   std::vector<float> depth;
