@@ -24,7 +24,8 @@ RunResult runLzb(const std::string& args, const std::string& shellPrefix) {
 std::string mpiexecPrefix(int ranks, int timeoutSeconds) {
   const std::filesystem::path sessions =
       std::filesystem::path(LZB_WORK_DIR) / "mpi-sessions" / std::to_string(getpid());
-  return "OMPI_MCA_orte_tmpdir_base=" + sessions.string() + " " +
+  return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_orte_tmpdir_base=" +
+         sessions.string() + " " +
          (timeoutSeconds > 0 ? "timeout " + std::to_string(timeoutSeconds) + " " : "") +
          LZB_MPIEXEC + " -n " + std::to_string(ranks) + " --oversubscribe ";
 }

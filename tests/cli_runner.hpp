@@ -16,8 +16,8 @@ struct RunResult {
 // `shellPrefix` (e.g. "ulimit -v 3000000; ").
 RunResult runLzb(const std::string& args, const std::string& shellPrefix = "");
 // The shell prefix that runs lzb on `ranks` MPI ranks (oversubscribed), under `timeout` when it
-// is above 0, with an Open MPI session folder of this test process's own (CMakeLists.txt,
-// lzb_mpi_tests, says why).
+// is above 0, allowed as root, with an Open MPI session folder of this test process's own
+// (CMakeLists.txt, lzb_mpi_tests, says why).
 std::string mpiexecPrefix(int ranks, int timeoutSeconds = 0);
 // A fresh, empty folder under the test work dir.
 std::filesystem::path freshDir(const std::string& name);
