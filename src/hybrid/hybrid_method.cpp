@@ -27,7 +27,8 @@ class HybridMethod : public Method {
     addSharedOption(c, "--fallback", fallback_,
                     "rzb, hybrid: boxes (hybrid: octree leaves) whose triangles project above this "
                     "many pixels are drawn exactly (rzb: z-buffer; hybrid: lazy ray casting + "
-                    "PVL): auto (d^2 / ln pixels), off (rzb only), or a number");
+                    "PVL): auto (rzb: d^2 / ln pixels; hybrid: d^2 / 10^4), off (rzb only), or a "
+                    "number");
     addSharedOption(c, "--backfaces", backfaces_, "rzb, hybrid, surfels: drop | keep samples (surfels) on back faces");
     addSharedOption(c, "--plane", plane_,
                     "lzb, hybrid: partition plane: auto (coarse ray casting, mean depth), cost "

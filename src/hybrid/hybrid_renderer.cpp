@@ -22,7 +22,7 @@ PointParams HybridParams::pointParams(int width, int height) const {
   PointParams p;
   p.splat = splat;
   p.samplesPerPixel = oversample * lnPixels / double(splat * splat);
-  p.thresholdPx = fallbackPx > 0.0 ? fallbackPx : double(splat * splat) / lnPixels;
+  p.thresholdPx = fallbackPx > 0.0 ? fallbackPx : kAutoFallbackPx * double(splat * splat);
   p.dropBackfaces = dropBackfaces;
   return p;
 }

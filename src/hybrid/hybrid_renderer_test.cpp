@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "raycast/lzb_test_util.hpp"
 #include "raycast/raycast_renderer.hpp"
 #include "raycast/ray_witness.hpp"
@@ -36,6 +38,15 @@ const Scene* field() {
                         : new Scene(loadScene("builtin:replicated?mesh=" + mesh + "&k=16&levels=1", true));
   }();
   return scene;
+}
+
+// The point pass exercised at these small sizes: rzb's threshold d^2 / ln(pixels) at 160 x 120
+// (~0.1 px), which samples these scenes; the automatic one (kAutoFallbackPx) samples only far
+// smaller triangles.
+HybridParams sampling() {
+  HybridParams p;
+  p.fallbackPx = 1.0 / std::log(160.0 * 120.0);
+  return p;
 }
 
 TEST(HybridRenderer, IsExactOnTheCity) {
@@ -78,7 +89,7 @@ TEST(HybridRenderer, WithNothingSampledCastsLikeLzbEveryFrame) {
 TEST(HybridRenderer, SubPixelFieldIsSampledAndShowsVisibleTriangles) {
   const Scene* scene = field();
   if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
-  HybridRenderer hybrid(*scene, testing::lzbRenderOptions(), HybridParams{});
+  HybridRenderer hybrid(*scene, testing::lzbRenderOptions(), sampling());
   LzbOptions walk;  // what the hybrid's rays do where the point pass takes leaves
   walk.farRays = FarRays::kWalk;
   LzbRenderer lzb(*scene, testing::lzbRenderOptions(), walk);
@@ -97,18 +108,31 @@ TEST(HybridRenderer, SubPixelFieldIsSampledAndShowsVisibleTriangles) {
   EXPECT_LT(hs.counts.value("pvl_size", 0.0), 0.1 * ls.counts.value("pvl_size", 0.0));
 }
 
+// With the automatic threshold the field (triangles of ~0.01-0.1 pixel here) is drawn by the
+// rays and the PVL, exactly: sampling it cost more than lazy ray casting and lost accuracy.
+TEST(HybridRenderer, AutomaticThresholdDrawsTheFieldExactly) {
+  const Scene* scene = field();
+  if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
+  HybridRenderer hybrid(*scene, testing::lzbRenderOptions(), HybridParams{});
+  const Camera cam = testing::pathFrame(*scene, 1, 4, 160, 120);
+  FrameStats stats;
+  const Accuracy a = accuracy(*scene, cam, testing::renderFrame(hybrid, cam, {}, &stats));
+  EXPECT_EQ(stats.shared.value("sampled_leaves", -1.0), 0.0);
+  EXPECT_GE(a.correctRateCovered, 0.999);
+}
+
 TEST(HybridRenderer, RankSharesCompositeToTheOneRankImageOnASampledField) {
   const Scene* scene = field();
   if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
   const Camera cam = testing::pathFrame(*scene, 1, 4, 160, 120);
-  HybridRenderer one(*scene, testing::lzbRenderOptions(2), HybridParams{});
+  HybridRenderer one(*scene, testing::lzbRenderOptions(2), sampling());
   FrameStats alone;
   const Framebuffer single = testing::renderFrame(one, cam, {}, &alone);
   for (int size : {2, 3}) {
     Framebuffer composite(cam.width(), cam.height());
     double samples = 0.0, rays = 0.0;
     for (int rank = 0; rank < size; ++rank) {
-      HybridRenderer r(*scene, testing::lzbRenderOptions(1), HybridParams{});
+      HybridRenderer r(*scene, testing::lzbRenderOptions(1), sampling());
       FrameStats stats;
       const Framebuffer part = testing::renderFrame(r, cam, {rank, size}, &stats);
       compositeNearer(composite, part);
@@ -131,7 +155,7 @@ TEST(HybridRenderer, RankSharesCompositeToTheOneRankImageOnASampledField) {
 TEST(HybridRenderer, InstancedBoardIsSampledAsWholeSubtrees) {
   const Scene scene = loadScene("builtin:chessboard?n=16384", true);
   const Camera cam = testing::pathFrame(scene, 1, 4, 160, 120);
-  HybridRenderer one(scene, testing::lzbRenderOptions(2), HybridParams{});
+  HybridRenderer one(scene, testing::lzbRenderOptions(2), sampling());
   FrameStats alone;
   const Framebuffer single = testing::renderFrame(one, cam, {}, &alone);
   const Accuracy a = accuracy(scene, cam, single);
@@ -142,7 +166,7 @@ TEST(HybridRenderer, InstancedBoardIsSampledAsWholeSubtrees) {
   EXPECT_LT(units, 2000.0);
   EXPECT_EQ(alone.counts.value("pvl_size", 0.0), 0.0);  // nothing left for the rays
   EXPECT_GT(alone.counts.value("sample_pixels", 0.0), 0.99 * double(a.coveredPixels));
-  HybridRenderer oneThread(scene, testing::lzbRenderOptions(1), HybridParams{});
+  HybridRenderer oneThread(scene, testing::lzbRenderOptions(1), sampling());
   EXPECT_EQ(testing::renderFrame(oneThread, cam).id, single.id);
   for (int size : {2, 3}) {
     Framebuffer composite(cam.width(), cam.height());

@@ -9,7 +9,7 @@
 // A whole placed node is sampled as one unit, wherever it lies, when its triangles' bounds
 // span a depth ratio (depthMax / depthMin)^2 of at most kNodeDepthRatio (the samples' density
 // follows depthMin: rzb's eps) and its largest triangle, scaled by the instance path and seen at
-// depthMin, covers less than `thresholdPx` pixels (d^2 / ln v by default, as rzb's fallback):
+// depthMin, covers less than `thresholdPx` pixels (d^2 / 10^4 by default, HybridParams):
 // the cull then lists none of its leaves, so neither the near pass nor the rays see it, and its
 // samples composite with both by depth. Otherwise, behind the plane, its leaves are judged one by
 // one (content box wholly behind the plane, largest triangle below the threshold). The ray walk
