@@ -1,7 +1,5 @@
 #include "mpi/group.hpp"
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>

@@ -32,7 +32,7 @@ struct HybridParams {
   double fallbackPx = 0.0;   // sampled leaves' largest projected triangle; 0: kAutoFallbackPx d^2
   // The automatic threshold per d^2 pixels: sampling pays only for geometry the exact path cannot
   // hold (instancing far below a pixel). rzb's d^2 / ln(pixels) (~0.08 px) sampled the forest,
-  // the field and the sphereflake at 2-3x the frame time of lazy ray casting, less accurately
+  // the field and the sphereflake at 3-4x the frame time of lazy ray casting, less accurately
   // (any sampled unit also sends the rays through the octree walk instead of Embree).
   static constexpr double kAutoFallbackPx = 1e-4;
   bool dropBackfaces = true;
