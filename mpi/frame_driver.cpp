@@ -69,7 +69,13 @@ nlohmann::json FrameDriver::render(Renderer& renderer, const Camera& camera, int
   FrameStats stats;
   fb.resize(camera.width(), camera.height());
   stats.addStage("clear", clock.seconds());
-  renderer.render(camera, frame, WorkShare{g.rank, g.size}, fb, stats);
+  WorkShare share{g.rank, g.size};
+  if (g.size > 1)
+    share.orWords = [&g](std::span<uint64_t> words) {
+      LZB_MPI_CALL(MPI_Allreduce(MPI_IN_PLACE, words.data(), int(words.size()), MPI_UINT64_T,
+                                 MPI_BOR, g.comm));
+    };
+  renderer.render(camera, frame, share, fb, stats);
   if (g.size > 1) {  // idle until the slowest rank is done, so "composite" is the exchange alone
     Stopwatch idle;
     g.barrier();

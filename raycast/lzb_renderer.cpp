@@ -3,6 +3,8 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <bit>
+#include <cstring>
 #include <stdexcept>
 
 #include "raycast/lzb_cull.hpp"
@@ -81,9 +83,16 @@ LzbRenderer::LzbRenderer(const Scene& scene, const RenderOptions& options, const
 
 LzbRenderer::~LzbRenderer() = default;
 
+std::string LzbRenderer::nearPassText() const {
+  if (lzb_.nearRender == ZBufferKind::kGl)
+    return "every rank renders the near pass (z-buffer up to the partition plane, placed alike "
+           "on every rank) to know the unfinished pixels";
+  return "the ranks split the near pass (z-buffer up to the partition plane, placed alike on "
+         "every rank) by triangle ranges and OR their covered pixels to know the unfinished ones";
+}
+
 std::string LzbRenderer::decomposition() const {
-  return "every rank renders the near pass (z-buffer up to the partition plane, computed alike "
-         "on every rank) to know the unfinished pixels; screen tiles of " +
+  return nearPassText() + "; screen tiles of " +
          std::to_string(ScreenTiles::kDefaultSide) + "x" +
          std::to_string(ScreenTiles::kDefaultSide) +
          " pixels are dealt to ranks " + tileDealText(lzb_.tileDeal) +
@@ -163,8 +172,17 @@ void LzbRenderer::drawNearPass(Frame& f, Framebuffer& fb) {
   // the same z-buffer.
   const bool glPvl = lzb_.usesPvl() && lzb_.pvlRender == ZBufferKind::kGl;
   if (f.nearLists.triangles > 0 && f.zClip > camera.nearPlane()) {
+    f.nearDrawn = f.nearLists.triangles;
     if (lzb_.nearRender == ZBufferKind::kNative) {
-      native_.draw(scene_, camera, f.nearLists, {}, options_.threads, fb, f.zClip);
+      // Ranks rendering at once split the near scene by triangle ranges (markUnfinished then
+      // ORs their coverage): cheaper than every rank drawing it (hybrid, city 1080p, 2 ranks x
+      // 1 thread, 4 A/B pairs: near 1.7-2.1 -> 0.9-1.1 ms, unfinished with the exchange
+      // 1.7-2.0 -> 2.2-2.7 ms, frame 2.7 ms faster in the median pair).
+      f.nearSplit = bool(f.share.orWords);
+      const IdRange part =
+          f.nearSplit ? shareRange(f.nearLists.triangles, f.share) : IdRange{0, f.nearDrawn};
+      f.nearDrawn = part.end - part.begin;
+      native_.draw(scene_, camera, f.nearLists, {}, options_.threads, fb, f.zClip, part);
     } else {
       raster_->begin(camera, f.zClip);
       drawLists(*raster_, scene_, f.nearLists);
@@ -180,17 +198,56 @@ void LzbRenderer::drawNearPass(Frame& f, Framebuffer& fb) {
 }
 
 void LzbRenderer::markUnfinished(Frame& f, const Framebuffer& fb) {
-  uint64_t unfinished = 0;
-  open_.resize(fb.size());
   const long pixels = long(fb.size());
+  open_.resize(fb.size());
+  uint64_t unfinished = 0;
 #pragma omp parallel for schedule(static) num_threads(options_.threads) reduction(+ : unfinished)
   for (long i = 0; i < pixels; ++i) {
-    const bool empty = fb.id[size_t(i)] == kNoId;
+    const uint8_t empty = fb.depth[size_t(i)] == kEmptyDepth;  // (framebuffer.hpp)
     open_[size_t(i)] = empty;
     unfinished += empty;
   }
+  if (f.nearSplit) unfinished -= closeCoveredElsewhere(f.share);
   f.unfinished = unfinished;
   plane_.observe(unfinished);
+}
+
+namespace {
+
+// The covered pixels (open 0) among open[64 w, 64 w + 64) as bits.
+uint64_t coveredBits(const std::vector<uint8_t>& open, size_t w) {
+  const size_t begin = 64 * w, n = std::min<size_t>(64, open.size() - begin);
+  uint64_t openBits = 0;
+  if (n == 64) {
+    for (size_t k = 0; k < 8; ++k) {
+      uint64_t bytes;  // eight 0/1 bytes; the product gathers byte i's bit at bit 56 + i
+      std::memcpy(&bytes, open.data() + begin + 8 * k, 8);
+      openBits |= (bytes * 0x0102040810204080ull) >> 56 << (8 * k);
+    }
+    return ~openBits;
+  }
+  for (size_t b = 0; b < n; ++b) openBits |= uint64_t(open[begin + b]) << b;
+  return ~openBits & ((uint64_t(1) << n) - 1);
+}
+
+}  // namespace
+
+uint64_t LzbRenderer::closeCoveredElsewhere(const WorkShare& share) {
+  const long words = long((open_.size() + 63) / 64);
+  mine_.resize(size_t(words));
+  covered_.resize(size_t(words));
+#pragma omp parallel for schedule(static) num_threads(options_.threads)
+  for (long w = 0; w < words; ++w) covered_[size_t(w)] = mine_[size_t(w)] = coveredBits(open_, size_t(w));
+  share.orWords(covered_);
+  uint64_t closed = 0;
+#pragma omp parallel for schedule(static) num_threads(options_.threads) reduction(+ : closed)
+  for (long w = 0; w < words; ++w) {
+    uint64_t elsewhere = covered_[size_t(w)] & ~mine_[size_t(w)];
+    closed += uint64_t(std::popcount(elsewhere));
+    for (; elsewhere; elsewhere &= elsewhere - 1)
+      open_[64 * size_t(w) + size_t(std::countr_zero(elsewhere))] = 0;
+  }
+  return closed;
 }
 
 void LzbRenderer::projectFarObjects(Frame& f) {
@@ -362,7 +419,7 @@ void LzbRenderer::measureDepthComplexity(const Camera& camera, FrameStats& stats
 
 void LzbRenderer::countFrame(const Frame& f, FrameStats& stats) const {
   const Camera& camera = *f.camera;
-  // Every rank computes the plane, the cull and the near pass alike.
+  // Every rank computes the plane, the cull and the near scene's lists alike.
   stats.setShared("plane_depth", f.zClip);
   stats.setShared("plane_fraction",
                   (f.zClip - camera.nearPlane()) / (camera.farPlane() - camera.nearPlane()));
@@ -375,6 +432,7 @@ void LzbRenderer::countFrame(const Frame& f, FrameStats& stats) const {
   stats.setShared("unfinished_pixels", double(f.unfinished));
   if (f.oor) stats.setShared("oor_objects", double(f.oor->size()));
   // This rank's share.
+  stats.addCount("near_triangles_drawn", double(f.nearDrawn));
   stats.addCount("rays_cast", double(f.tileCounts.cast));
   if (f.oor) stats.addCount("oor_polygon_rows", double(f.tileCounts.polygonRows));
   if (f.walked) {

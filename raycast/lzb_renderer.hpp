@@ -12,9 +12,12 @@
 // a pass of its own composited by (depth, ID) after a native near pass); colour comes from the
 // IDs after compositing (the frame driver).
 //
-// Ranks: every rank renders the near pass (cheap) and so knows the unfinished pixels and keeps
-// the same plane state; each casts rays only in its screen tiles (tile % size == rank) and draws
-// only its PVL part; compositing all ranks' framebuffers by (depth, id) gives the 1-rank image.
+// Ranks: every rank culls and places the plane alike; ranks rendering at once (the frame driver)
+// split the native near pass by triangle ranges and OR their covered pixels, so every rank knows
+// the unfinished pixels and keeps the same plane state (a GL near pass, and shares rendered one
+// after another, draw the whole near scene on every rank); each casts rays only in its screen
+// tiles (tile % size == rank) and draws only its PVL part; compositing all ranks' framebuffers
+// by (depth, id) gives the 1-rank image.
 #include <memory>
 #include <string>
 #include <vector>
@@ -44,6 +47,8 @@ class LzbRenderer : public Renderer {
 
   std::string name() const override { return "lzb"; }
   std::string decomposition() const override;
+  // How the ranks share the near pass, for decomposition() texts.
+  std::string nearPassText() const;
   // The stages below in order, each timed.
   void render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
               FrameStats& stats) override;
@@ -55,9 +60,11 @@ class LzbRenderer : public Renderer {
     WorkShare share;
     double zClip = 0.0;              // the partition plane (view depth)
     DrawLists nearLists;             // the near scene
+    uint64_t nearDrawn = 0;          // its triangles this rank drew
+    bool nearSplit = false;          // the ranks drew parts of it at once (WorkShare::orWords)
     uint64_t farTriangles = 0;       // triangle entries of culled leaves reaching beyond zClip
     bool glPassOpen = false;         // the near pass's GL z-buffer awaits the PVL
-    uint64_t unfinished = 0;         // pixels the near pass left empty
+    uint64_t unfinished = 0;         // pixels the near pass (of every rank) left empty
     std::vector<int> tiles;          // this rank's screen tiles (dealt by castFarRays)
     const OorObjects* oor = nullptr; // the OOR objects (oor and final stages)
     TileCastCounts tileCounts;
@@ -74,7 +81,7 @@ class LzbRenderer : public Renderer {
   void placePlane(Frame& f);
   // 3. The near scene by z-buffer, clipped at the plane, straight into fb.
   void drawNearPass(Frame& f, Framebuffer& fb);
-  // 4. The unfinished pixels (left empty by the near pass).
+  // 4. The unfinished pixels (left empty by the near pass of every rank).
   void markUnfinished(Frame& f, const Framebuffer& fb);
   // 5a. OOR objects: projected content boxes of the far leaves (oor and final stages).
   void projectFarObjects(Frame& f);
@@ -93,7 +100,7 @@ class LzbRenderer : public Renderer {
   // What the last frame did, for tests and studies.
   struct FrameDetail {
     PlaneDecision plane;
-    Framebuffer nearPass;              // ids/depths of the near pass alone (keepNearPass)
+    Framebuffer nearPass;  // ids/depths of this rank's near pass alone (keepNearPass)
     std::vector<uint32_t> castPixels;  // framebuffer indices of the pixels rays were cast from
     DrawLists pvl;                     // this rank's PVL (empty for naive)
     RayWalkCounts walk;                // --lzb-rays walk
@@ -111,6 +118,9 @@ class LzbRenderer : public Renderer {
 
  private:
   void measureDepthComplexity(const Camera& camera, FrameStats& stats);
+  // After a split near pass: ORs the ranks' covered pixels, closes in open_ those another rank
+  // covered and returns their number.
+  uint64_t closeCoveredElsewhere(const WorkShare& share);
   // castFarRays by engine, each filling tilePixels (per owned tile: the pixels cast).
   // Runs castTile(thread, rect, tile, k, scratch, counts, cast pixels) on this rank's k-th
   // owned tile, over the frame's threads, and sums the tiles' counts into f.tileCounts.
@@ -141,6 +151,7 @@ class LzbRenderer : public Renderer {
   std::unique_ptr<OorObjects> oor_;
   NativeRasterizer native_;    // --near-render / --pvl-render native
   std::vector<uint8_t> open_;  // the near pass's unfinished pixels (1), per pixel
+  std::vector<uint64_t> mine_, covered_;  // covered pixels, 64 a word: this rank's, every rank's
   Framebuffer farPass_;
   FrameDetail last_;
   bool keepNearPass_ = false;

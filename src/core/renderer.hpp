@@ -1,6 +1,9 @@
 #pragma once
 // The interface every rendering method implements.
+#include <cstdint>
+#include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,6 +22,10 @@ namespace lzb {
 struct WorkShare {
   int rank = 0;
   int size = 1;
+  // Set by the frame driver, whose ranks render a frame at the same time: ORs `words` over the
+  // ranks in place (every rank calls it at the same step). Unset (shares rendered one after
+  // another in one process, and one rank): a method replicates the step that would need it.
+  std::function<void(std::span<uint64_t>)> orWords = {};
 };
 
 struct RenderOptions {

@@ -305,14 +305,18 @@ struct Binner {
   }
 };
 
-// Bins `first.back()` triangles, numbered through ranges (range r holds [first[r], first[r+1])),
-// in chunks the threads share dynamically, each thread into its own bins: body(binner, r, from,
-// to) sets up triangles [from, to) of range r, range-local. Fills the set-up counts.
+// Bins triangles [lo, hi) of the `first.back()` triangles numbered through ranges (range r holds
+// [first[r], first[r+1])), in chunks the threads share dynamically, each thread into its own
+// bins: body(binner, r, from, to) sets up triangles [from, to) of range r, range-local. Fills
+// the set-up counts.
 template <class Body>
-void binChunks(const std::vector<uint64_t>& first, const PassGeometry& geometry, int threads,
+void binChunks(const std::vector<uint64_t>& first, uint64_t lo, uint64_t hi,
+               const PassGeometry& geometry, int threads,
                std::vector<std::vector<std::vector<RasterTriangle>>>& bins,
                NativeRasterCounts& counts, Body body) {
-  const uint64_t total = first.back();
+  hi = std::min(hi, first.back());
+  lo = std::min(lo, hi);
+  const uint64_t total = hi - lo;
   // At least ~8 chunks per thread, so that a short list (the near pass) is shared evenly.
   const uint64_t chunk = std::clamp<uint64_t>(total / (8 * uint64_t(threads)), 256, 2048);
   const long chunks = long((total + chunk - 1) / chunk);
@@ -322,7 +326,7 @@ void binChunks(const std::vector<uint64_t>& first, const PassGeometry& geometry,
     Binner binner{geometry, bins[size_t(omp_get_thread_num())], {}};
 #pragma omp for schedule(dynamic, 1)
     for (long c = 0; c < chunks; ++c) {
-      const uint64_t begin = uint64_t(c) * chunk, end = std::min(total, begin + chunk);
+      const uint64_t begin = lo + uint64_t(c) * chunk, end = std::min(hi, begin + chunk);
       // The last range starting at or before begin (empty ranges share their start).
       size_t r = size_t(std::upper_bound(first.begin(), first.end(), begin) - first.begin()) - 1;
       for (uint64_t g = begin; g < end; g = first[++r])
@@ -349,7 +353,7 @@ void NativeRasterizer::clearBins(int threads, int height) {
 
 void NativeRasterizer::draw(const Scene& scene, const Camera& camera, const DrawLists& lists,
                             std::span<const uint8_t> open, int threads, Framebuffer& fb,
-                            double farClip) {
+                            double farClip, IdRange part) {
   if (!open.empty() && open.size() != fb.size())
     throw std::invalid_argument("NativeRasterizer: open mask and framebuffer sizes differ");
   threads = std::max(threads, 1);
@@ -373,7 +377,7 @@ void NativeRasterizer::draw(const Scene& scene, const Camera& camera, const Draw
   const PassGeometry geometry(camera, fb.width, fb.height, farClip);
   constexpr size_t kPrefetch = 8;  // triangles ahead
   // Set-up: transform, clip, snap, bin to bands (per thread, so no locks).
-  binChunks(first, geometry, threads, bins_, counts_,
+  binChunks(first, part.begin, part.end, geometry, threads, bins_, counts_,
             [&](Binner& binner, size_t l, size_t from, size_t to) {
               // The chunk's part of list l, with its per-list data hoisted out of the loop.
               const DrawList& list = lists.lists[l];
@@ -412,7 +416,7 @@ void NativeRasterizer::drawSoup(const Camera& camera, const TriangleSoup& soup, 
   const glm::dmat3 toView =
       glm::transpose(glm::dmat3(camera.right(), camera.up(), camera.forward()));
   const glm::dvec3 eye = camera.position();
-  binChunks(first, geometry, threads, bins_, counts_,
+  binChunks(first, 0, first.back(), geometry, threads, bins_, counts_,
             [&](Binner& binner, size_t r, size_t from, size_t to) {
               for (size_t i = from; i < to; ++i) {
                 const uint64_t tri = soup.ranges[r].begin + i;

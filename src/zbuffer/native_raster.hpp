@@ -27,6 +27,7 @@
 #include <span>
 #include <vector>
 
+#include "mpi/decomposition.hpp"
 #include "src/core/camera.hpp"
 #include "src/core/framebuffer.hpp"
 #include "src/core/scene.hpp"
@@ -93,9 +94,12 @@ struct TriangleSoup {
 class NativeRasterizer {
  public:
   // open: one byte per pixel of fb (fb.index order), nonzero where triangles may be drawn; empty:
-  // every pixel. Fragments deeper than farClip (0: the camera's far plane) are dropped.
+  // every pixel. Fragments deeper than farClip (0: the camera's far plane) are dropped. Only the
+  // lists' triangles [part.begin, part.end) in list order are drawn (default: all), so ranks
+  // can split a pass by contiguous ranges and composite.
   void draw(const Scene& scene, const Camera& camera, const DrawLists& lists,
-            std::span<const uint8_t> open, int threads, Framebuffer& fb, double farClip = 0.0);
+            std::span<const uint8_t> open, int threads, Framebuffer& fb, double farClip = 0.0,
+            IdRange part = {0, ~uint64_t(0)});
   // The soup's triangles at every pixel, up to the camera's far plane.
   void drawSoup(const Camera& camera, const TriangleSoup& soup, int threads, Framebuffer& fb);
   const NativeRasterCounts& counts() const { return counts_; }

@@ -282,6 +282,21 @@ TEST(NativeRaster, SameImageForAnyThreadCountAndOrder) {
   compositeNearer(fa, fbb);
   EXPECT_EQ(fa.id, one.id);
   EXPECT_EQ(fa.depth, one.depth);
+  // Three ranks' contiguous parts of two lists (the cuts fall inside lists), composited.
+  DrawLists two = all;
+  two.lists = {a.lists[0], b.lists[0]};
+  Framebuffer parts(70, 50);
+  uint64_t drawn = 0;
+  for (int rank = 0; rank < 3; ++rank) {
+    Framebuffer part(70, 50);
+    r.draw(m.scene, cam, two, {}, 2, part, 0.0, shareRange(400, WorkShare{rank, 3}));
+    drawn += r.counts().triangles;
+    EXPECT_LT(r.counts().triangles, 400u);
+    compositeNearer(parts, part);
+  }
+  EXPECT_EQ(drawn, 400u);
+  EXPECT_EQ(parts.id, one.id);
+  EXPECT_EQ(parts.depth, one.depth);
   expectSameAsGl(m, cam, glm::dmat4(1.0), 2, 70 * 50 / 1000);
 }
 
