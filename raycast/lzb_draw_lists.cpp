@@ -46,8 +46,8 @@ DrawLists nearScene(const LzbAccel& accel, const CulledScene& culled, double zCl
   const std::vector<size_t> range = pathLeafRanges(culled);
   const long paths = long(culled.paths.size());
   std::vector<DrawList> lists(culled.paths.size());
-  uint64_t far = 0;
-#pragma omp parallel num_threads(threads) reduction(+ : far) if (paths >= kParallelPaths)
+  uint64_t far = 0, nearLeaves = 0;
+#pragma omp parallel num_threads(threads) reduction(+ : far, nearLeaves) if (paths >= kParallelPaths)
   {
     TriangleSet nearSet;
 #pragma omp for schedule(dynamic, 4)
@@ -58,15 +58,19 @@ DrawLists nearScene(const LzbAccel& accel, const CulledScene& culled, double zCl
       nearSet.reset(n);
       for (size_t i = range[size_t(p)]; i < range[size_t(p) + 1]; ++i) {
         const CullLeaf& l = culled.leaves[i];
-        if (l.depthMin < zClip)
+        if (l.depthMin < zClip) {
+          ++nearLeaves;
           for (uint32_t t : a.leafTriangles(l.leaf)) nearSet.add(t);
+        }
         if (l.depthMax > zClip) far += a.leafTriangles(l.leaf).size();
       }
-      lists[size_t(p)] = placedList(path.node, path.world, path.idBase, nearSet);
+      // Most placements of a far, instanced scene have nothing near: no list to make.
+      if (nearSet.count() > 0)
+        lists[size_t(p)] = placedList(path.node, path.world, path.idBase, nearSet);
     }
   }
   DrawLists result = nonEmpty(lists);
-  for (const CullLeaf& l : culled.leaves) result.leaves += l.depthMin < zClip;
+  result.leaves = nearLeaves;
   if (farTriangles) *farTriangles = far;
   return result;
 }
