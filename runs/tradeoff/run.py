@@ -14,6 +14,7 @@ sprite; the exact methods are one point each. A method that refuses a scene (exi
 the in-core sample tree above 2^24 triangles) is recorded as refused in the CSV's comment lines.
 
 Usage: python3 runs/tradeoff/run.py [--quick] [--plot-only] [--scenes=a,b] [--methods=a,b] [--no-wait]
+       [--keep]  (--keep: replace only the rerun methods' rows and commands of each scene's CSV)
        (from the repository root, after scripts/build.sh and scripts/fetch-test-meshes.sh;
        plots need gnuplot: bash scripts/install-deps.sh --bench)
 Writes runs/tradeoff/<scene>.csv and <scene>.png: per combination the median frame time (frames
@@ -59,7 +60,7 @@ SWEEPS = {
     "raycast": [("raycast", [], [f"threads={common.CORES}"])],
     "zbuffer": [("zbuffer", [], [f"threads={common.CORES}"])],
     "rzb": [("rzb", [], ["splat=1,2,4", "eps=1.2,1.5,3", "oversample=0.5,1,2", "fallback=auto,16"])],
-    "hybrid": [("hybrid", [], ["splat=1,2,4", "oversample=0.5,1,2", "fallback=auto,16"])],
+    "hybrid": [("hybrid", [], ["splat=1,2,4", "oversample=0.5,1,2", "fallback=auto,0.001,0.1,16"])],
     "lzb": [("lzb", [], ["plane=cost,auto,0.05,0.2"]),
             # the local occluders act in the paper's octree walk only
             ("lzb_walk", ["--lzb-rays", "walk"], ["plane=cost,0.2", "occluders=0,1,5"])],
@@ -142,6 +143,12 @@ def mark_pareto(rows):
 def run_scene(name, methods):
     scene = SCENES[name]
     rows, commands = [], []
+    path = os.path.join(HERE, f"{PREFIX}{name}.csv")
+    kept_rows, kept_commands = (common.read_kept(path) if "--keep" in sys.argv and
+                                os.path.exists(path) else ([], []))
+    kept_rows = [dict(r, error=float(r["error"])) for r in kept_rows if r["method"] not in methods]
+    kept_commands = [c for c in kept_commands
+                     if not any(f" --method {m} " in c for m in methods)]
     for method in methods:
         for label, extra, params in SWEEPS.get(method, []):
             if not QUICK and "--no-wait" not in sys.argv:
@@ -157,8 +164,9 @@ def run_scene(name, methods):
                 rows.append(r)
                 print(f"{name} {r['config']:40s}: {float(r['median_frame_s']) * 1e3:9.2f} ms, "
                       f"error {r['error']:.2e}", flush=True)
+    rows = kept_rows + rows
     mark_pareto(rows)
-    common.write_csv(os.path.join(HERE, f"{PREFIX}{name}.csv"), rows, FIELDS, commands)
+    common.write_csv(path, rows, FIELDS, kept_commands + commands)
 
 
 def plot_scene(name):
