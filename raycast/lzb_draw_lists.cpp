@@ -47,7 +47,8 @@ DrawLists nearScene(const LzbAccel& accel, const CulledScene& culled, double zCl
   const long paths = long(culled.paths.size());
   std::vector<DrawList> lists(culled.paths.size());
   uint64_t far = 0, nearLeaves = 0;
-#pragma omp parallel num_threads(threads) reduction(+ : far, nearLeaves) if (paths >= kParallelPaths)
+#pragma omp parallel num_threads(threads) reduction(+ : far, nearLeaves) \
+    if (paths >= kParallelPaths)
   {
     TriangleSet nearSet;
 #pragma omp for schedule(dynamic, 4)

@@ -237,7 +237,8 @@ uint64_t LzbRenderer::closeCoveredElsewhere(const WorkShare& share) {
   mine_.resize(size_t(words));
   covered_.resize(size_t(words));
 #pragma omp parallel for schedule(static) num_threads(options_.threads)
-  for (long w = 0; w < words; ++w) covered_[size_t(w)] = mine_[size_t(w)] = coveredBits(open_, size_t(w));
+  for (long w = 0; w < words; ++w)
+    covered_[size_t(w)] = mine_[size_t(w)] = coveredBits(open_, size_t(w));
   share.orWords(covered_);
   uint64_t closed = 0;
 #pragma omp parallel for schedule(static) num_threads(options_.threads) reduction(+ : closed)

@@ -62,7 +62,8 @@ HybridRenderer::HybridRenderer(const Scene& scene, const RenderOptions& options,
 
 std::string HybridRenderer::decomposition() const {
   return lzb_.nearPassText() +
-         "; the octree leaves behind the plane that are point-sampled are dealt to ranks as contiguous runs of equal sample count in cull order; screen tiles of " +
+         "; the octree leaves behind the plane that are point-sampled are dealt to ranks as "
+         "contiguous runs of equal sample count in cull order; screen tiles of " +
          std::to_string(ScreenTiles::kDefaultSide) + "x" +
          std::to_string(ScreenTiles::kDefaultSide) +
          " pixels are dealt for the rays " + tileDealText(params_.lzb.tileDeal) +
