@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <barrier>
 #include <glm/gtc/matrix_transform.hpp>
+#include <memory>
+#include <span>
+#include <thread>
 
 #include "mpi/decomposition.hpp"
 #include "raycast/embree_scene.hpp"
@@ -357,6 +361,60 @@ TEST(LzbRenderer, SameImageForAnyRankAndThreadCount) {
           EXPECT_EQ(rays, alone.counts.value("rays_cast", -1.0));
         }
     }
+}
+
+// Ranks that render a frame at once (the frame driver) split the native near pass by triangle
+// ranges and OR their covered pixels mid-frame (WorkShare::orWords); here one thread a rank with
+// an in-process OR, on an image whose pixel count is no multiple of 64 (a partial last word).
+TEST(LzbRenderer, RanksRenderingAtOnceSplitTheNearPass) {
+  const Scene scene = loadScene("builtin:city?blocks=3", true);
+  const Camera cam = pathFrame(scene, 0, 4, 100, 70);
+  LzbRenderer one(scene, testing::lzbRenderOptions(1), LzbOptions{});
+  FrameStats alone;
+  const Framebuffer single = renderFrame(one, cam, {}, &alone);
+  const double nearTotal = alone.shared.value("near_triangles", 0.0);
+  ASSERT_GT(nearTotal, 1000.0) << "the view needs a near pass worth splitting";
+  EXPECT_EQ(alone.counts.value("near_triangles_drawn", -1.0), nearTotal);
+  for (int size : {2, 3}) {
+    SCOPED_TRACE(size);
+    std::vector<std::unique_ptr<LzbRenderer>> ranks;
+    for (int r = 0; r < size; ++r)
+      ranks.push_back(
+          std::make_unique<LzbRenderer>(scene, testing::lzbRenderOptions(1), LzbOptions{}));
+    std::vector<std::vector<uint64_t>> posted(size_t(size), std::vector<uint64_t>{});
+    std::barrier sync(size);
+    std::vector<Framebuffer> fbs(static_cast<size_t>(size));
+    std::vector<FrameStats> stats(static_cast<size_t>(size));
+    std::vector<std::thread> threads;
+    for (int r = 0; r < size; ++r)
+      threads.emplace_back([&, r] {
+        WorkShare share{r, size};
+        share.orWords = [&, r](std::span<uint64_t> words) {
+          posted[size_t(r)].assign(words.begin(), words.end());
+          sync.arrive_and_wait();
+          for (const std::vector<uint64_t>& other : posted)
+            for (size_t w = 0; w < words.size(); ++w) words[w] |= other[w];
+          sync.arrive_and_wait();  // every rank has read every post before the next one
+        };
+        fbs[size_t(r)] = renderFrame(*ranks[size_t(r)], cam, share, &stats[size_t(r)]);
+      });
+    for (std::thread& t : threads) t.join();
+    Framebuffer composite(cam.width(), cam.height());
+    double drawn = 0.0;
+    for (int r = 0; r < size; ++r) {
+      compositeNearer(composite, fbs[size_t(r)]);
+      const double mine = stats[size_t(r)].counts.value("near_triangles_drawn", 0.0);
+      EXPECT_GT(mine, 0.0) << "rank " << r;
+      EXPECT_LT(mine, nearTotal) << "rank " << r;
+      drawn += mine;
+      // Every rank knows every unfinished pixel, as the single rank does.
+      EXPECT_EQ(stats[size_t(r)].shared.value("unfinished_pixels", -1.0),
+                alone.shared.value("unfinished_pixels", -2.0));
+    }
+    EXPECT_EQ(drawn, nearTotal);
+    EXPECT_EQ(composite.id, single.id);
+    EXPECT_EQ(composite.depth, single.depth);
+  }
 }
 
 TEST(LzbRenderer, ReportsStagesAndCounts) {

@@ -11,6 +11,13 @@ import sys
 import tempfile
 import time
 
+# -h / --help prints the running study's docstring (its usage) instead of starting the study,
+# which would overwrite its CSVs.
+if {"-h", "--help"} & set(sys.argv[1:]):
+    import __main__
+    print((__main__.__doc__ or "see the study's README.md").strip())
+    sys.exit(0)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 LZB = os.path.join(os.environ.get("LZB_BUILD", os.path.join(ROOT, "build")), "lzb")
 DATA = os.path.join(ROOT, "build", "data")
