@@ -4,6 +4,8 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <limits>
+#include <span>
 #include <string>
 
 #include "src/core/error.hpp"
@@ -70,17 +72,29 @@ class Culler {
     std::vector<uint32_t> instances;
     const Frustum local = hasTriangles ? frustumToNodeSpace(frustum_, world) : Frustum{};
     const size_t leavesBefore = out.leaves.size();
+    uint64_t leafTriangles = 0;
+    double leafDepthMin = std::numeric_limits<double>::infinity();
     a.octree().cullFrustum(frustum_, world, [&](uint32_t leaf, Cull cull) {
       // The leaf's content box, tighter than its cube, decides (cube inside: content inside).
-      if (listLeaves && !a.leafTriangles(leaf).empty() &&
+      const size_t triangles = listLeaves ? a.leafTriangles(leaf).size() : 0;
+      if (triangles > 0 &&
           (cull == Cull::kInside || local.classify(a.contentBox(leaf)) != Cull::kOutside)) {
         double lo, hi;
         depthRange(a.contentBox(leaf), p.depthGrad, p.depthOffset, lo, hi);
         out.leaves.push_back({pathIndex, leaf, lo, hi});
+        leafTriangles += triangles;
+        leafDepthMin = std::min(leafDepthMin, lo);
       }
       for (uint32_t i : a.leafInstances(leaf)) instances.push_back(i);
     });
     const size_t added = out.leaves.size() - leavesBefore;
+    if (listLeaves) {
+      CullPath& listed = out.paths[pathIndex];
+      listed.firstLeaf = uint32_t(leavesBefore);
+      listed.leafCount = uint32_t(added);
+      listed.leafTriangles = leafTriangles;
+      listed.leafDepthMin = leafDepthMin;
+    }
     if (listed_.leaves.fetch_add(added, std::memory_order_relaxed) + added > kMaxCullLeaves)
       throw tooInstanced();
     if (instances.empty()) return;
@@ -112,6 +126,36 @@ class Culler {
   CullCounts& listed_;
 };
 
+// Appends the parts to out in their order, each at its offset at once (indices shifted).
+void joinParts(std::span<const CulledScene> parts, CulledScene& out, int threads) {
+  std::vector<size_t> pathAt(parts.size() + 1, out.paths.size()),
+      leafAt(parts.size() + 1, out.leaves.size());
+  for (size_t k = 0; k < parts.size(); ++k) {
+    pathAt[k + 1] = pathAt[k] + parts[k].paths.size();
+    leafAt[k + 1] = leafAt[k] + parts[k].leaves.size();
+    out.instancesVisited += parts[k].instancesVisited;
+  }
+  out.paths.resize(pathAt.back());
+  out.leaves.resize(leafAt.back());
+  const long count = long(parts.size());
+#pragma omp parallel for schedule(dynamic, 16) num_threads(std::max(threads, 1)) if (count > 16)
+  for (long k = 0; k < count; ++k) {
+    const CulledScene& part = parts[size_t(k)];
+    const uint32_t pathOffset = uint32_t(pathAt[size_t(k)]);
+    const uint32_t leafOffset = uint32_t(leafAt[size_t(k)]);
+    CullPath* p = out.paths.data() + pathOffset;
+    for (const CullPath& from : part.paths) {
+      *p = from;
+      p++->firstLeaf += leafOffset;
+    }
+    CullLeaf* l = out.leaves.data() + leafOffset;
+    for (const CullLeaf& from : part.leaves) {
+      *l = from;
+      l++->path += pathOffset;
+    }
+  }
+}
+
 }  // namespace
 
 void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, int threads,
@@ -125,29 +169,26 @@ void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, in
   culler.visit(accel.scene().root, glm::dmat4(1.0), 0, out, &children);
   // The root's visible instances are walked in parallel, each into a part of its own; parts are
   // appended in instance order, so the result is the serial walk's whatever the thread count.
-  std::vector<CulledScene> parts(children.size());
+  std::vector<CulledScene>& parts = out.parts;
+  if (parts.size() < children.size()) parts.resize(children.size());
   std::exception_ptr failure;
   const long count = long(children.size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(threads, 1)) if (count > 1)
   for (long k = 0; k < count; ++k) {
     try {
       const ChildVisit& c = children[size_t(k)];
-      Culler(accel, camera, filter, listed).visit(c.node, c.world, c.idBase, parts[size_t(k)]);
+      CulledScene& part = parts[size_t(k)];
+      part.paths.clear();
+      part.leaves.clear();
+      part.instancesVisited = 0;
+      Culler(accel, camera, filter, listed).visit(c.node, c.world, c.idBase, part);
     } catch (...) {
 #pragma omp critical
       if (!failure) failure = std::current_exception();
     }
   }
   if (failure) std::rethrow_exception(failure);
-  for (const CulledScene& part : parts) {
-    const uint32_t offset = uint32_t(out.paths.size());
-    out.paths.insert(out.paths.end(), part.paths.begin(), part.paths.end());
-    for (CullLeaf l : part.leaves) {
-      l.path += offset;
-      out.leaves.push_back(l);
-    }
-    out.instancesVisited += part.instancesVisited;
-  }
+  joinParts(std::span<const CulledScene>(parts).first(children.size()), out, threads);
 }
 
 CulledScene cullScene(const LzbAccel& accel, const Camera& camera, int threads,

@@ -7,6 +7,7 @@
 // the far scene (rays, OOR objects) afterwards.
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <limits>
 #include <vector>
 
 #include "raycast/lzb_accel.hpp"
@@ -28,6 +29,11 @@ struct CullPath {
   // LeafFilter::subtreeDrawnElsewhere took the node and everything it instances: nothing below
   // it is listed (the path may name a node without triangles).
   bool subtree = false;
+  // Its leaves: CulledScene::leaves[firstLeaf, firstLeaf + leafCount), their triangles and the
+  // nearest of their depthMin (infinite without leaves).
+  uint32_t firstLeaf = 0, leafCount = 0;
+  uint64_t leafTriangles = 0;
+  double leafDepthMin = std::numeric_limits<double>::infinity();
 };
 
 struct CullLeaf {
@@ -40,6 +46,8 @@ struct CulledScene {
   std::vector<CullPath> paths;   // in ascending idBase order (depth-first, instances in order)
   std::vector<CullLeaf> leaves;  // grouped by path, in path order
   uint64_t instancesVisited = 0;
+  // The parallel walk's part per root instance, kept so that their memory serves the next frame.
+  std::vector<CulledScene> parts;
 };
 
 // Visible-instance limit: past it the scene is too instanced for a per-leaf cull (throws

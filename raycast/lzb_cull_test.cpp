@@ -22,6 +22,13 @@ TEST(LzbCull, SameResultForAnyThreadCount) {
     for (size_t p = 0; p < one.paths.size(); ++p) {
       EXPECT_EQ(one.paths[p].node, two.paths[p].node);
       EXPECT_EQ(one.paths[p].idBase, two.paths[p].idBase);
+      EXPECT_EQ(one.paths[p].firstLeaf, two.paths[p].firstLeaf);
+      EXPECT_EQ(one.paths[p].leafCount, two.paths[p].leafCount);
+      // A path's leaf range holds exactly its leaves (the lists are grouped by path).
+      for (const CulledScene* c : {&one, &two})
+        for (uint32_t l = 0; l < c->leaves.size(); ++l)
+          EXPECT_EQ(c->leaves[l].path == p, l >= c->paths[p].firstLeaf &&
+                                                l < c->paths[p].firstLeaf + c->paths[p].leafCount);
       if (p > 0) {
         EXPECT_LT(one.paths[p - 1].idBase, one.paths[p].idBase) << "ascending idBase";
       }

@@ -13,14 +13,6 @@ namespace {
 // than it saves, and on an oversubscribed machine it can stall for a scheduler time slice.
 constexpr long kParallelPaths = 32;
 
-// [begin, end) of each path's leaves in culled.leaves (grouped by path).
-std::vector<size_t> pathLeafRanges(const CulledScene& culled) {
-  std::vector<size_t> begin(culled.paths.size() + 1, culled.leaves.size());
-  for (size_t i = culled.leaves.size(); i-- > 0;) begin[culled.leaves[i].path] = i;
-  for (size_t p = culled.paths.size(); p-- > 0;) begin[p] = std::min(begin[p], begin[p + 1]);
-  return begin;
-}
-
 // The list of one placement: the triangles collected in `set`, which take() empties for reuse.
 DrawList placedList(uint32_t node, const glm::dmat4& world, uint64_t idBase, TriangleSet& set) {
   DrawList out{node, world, idBase, {}};
@@ -43,7 +35,6 @@ DrawLists nonEmpty(std::vector<DrawList>& lists) {
 
 DrawLists nearScene(const LzbAccel& accel, const CulledScene& culled, double zClip, int threads,
                     uint64_t* farTriangles) {
-  const std::vector<size_t> range = pathLeafRanges(culled);
   const long paths = long(culled.paths.size());
   std::vector<DrawList> lists(culled.paths.size());
   uint64_t far = 0, nearLeaves = 0;
@@ -54,10 +45,14 @@ DrawLists nearScene(const LzbAccel& accel, const CulledScene& culled, double zCl
 #pragma omp for schedule(dynamic, 4)
     for (long p = 0; p < paths; ++p) {
       const CullPath& path = culled.paths[size_t(p)];
+      if (path.leafDepthMin > zClip) {  // wholly far: every leaf's depthMax is past zClip too
+        far += path.leafTriangles;
+        continue;
+      }
       const NodeAccel& a = accel.node(path.node);
       const size_t n = accel.scene().nodes[path.node].mesh.size();
       nearSet.reset(n);
-      for (size_t i = range[size_t(p)]; i < range[size_t(p) + 1]; ++i) {
+      for (size_t i = path.firstLeaf; i < size_t(path.firstLeaf) + path.leafCount; ++i) {
         const CullLeaf& l = culled.leaves[i];
         if (l.depthMin < zClip) {
           ++nearLeaves;

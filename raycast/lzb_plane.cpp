@@ -43,8 +43,38 @@ PlaneDecision PartitionPlane::coarseRayCast(const EmbreeScene& embree, const Cam
   return d;
 }
 
+namespace {
+
+// Near triangles per candidate: [0] leaves starting before the near plane, [k + 1] leaves whose
+// start is first exceeded by candidate hits[k] (sorted); candidates from there on draw them.
+std::vector<uint64_t> nearHistogram(const std::vector<double>& hits, double nearPlane,
+                                    std::span<const LeafLoad> loads, int threads) {
+  const size_t n = hits.size();
+  std::vector<uint64_t> near(n + 1, 0);
+  const long count = long(loads.size());
+#pragma omp parallel num_threads(std::max(threads, 1)) if (count >= 65536)
+  {
+    std::vector<uint64_t> part(n + 1, 0);
+#pragma omp for schedule(static) nowait
+    for (long i = 0; i < count; ++i) {
+      const LeafLoad& l = loads[size_t(i)];
+      const size_t k =
+          size_t(std::upper_bound(hits.begin(), hits.end(), l.depthMin) - hits.begin());
+      if (l.depthMin < nearPlane)
+        part[0] += l.triangles;
+      else if (k < n)
+        part[k + 1] += l.triangles;
+    }
+#pragma omp critical
+    for (size_t k = 0; k <= n; ++k) near[k] += part[k];
+  }
+  return near;
+}
+
+}  // namespace
+
 double PartitionPlane::costPlane(std::vector<double> hits, uint64_t rays, const Camera& camera,
-                                 std::span<const LeafLoad> loads, double rayCost) {
+                                 std::span<const LeafLoad> loads, double rayCost, int threads) {
   if (hits.empty() || rays == 0) {
     // No coarse ray hit (sparse or sub-pixel geometry slips between them): every pixel may still
     // need a ray, so weigh the whole near scene against a ray for every pixel.
@@ -54,25 +84,16 @@ double PartitionPlane::costPlane(std::vector<double> hits, uint64_t rays, const 
     return triangles <= rayCost * pixels ? camera.farPlane() : camera.nearPlane();
   }
   std::sort(hits.begin(), hits.end());
-  // Candidate k: z = hits[k - 1] (k = 0: the near plane). Near triangles per candidate from a
-  // histogram of leaf starts over the candidates, then prefix sums.
+  // Candidate k: z = hits[k - 1] (k = 0: the near plane); its near triangles are the prefix sums
+  // of the histogram of leaf starts.
   const size_t n = hits.size();
-  std::vector<double> near(n + 1, 0.0);
-  for (const LeafLoad& l : loads) {
-    // First candidate whose z exceeds the leaf's start: candidates from there on draw it.
-    const size_t k = size_t(std::upper_bound(hits.begin(), hits.end(), l.depthMin) - hits.begin());
-    if (l.depthMin < camera.nearPlane()) {
-      near[0] += l.triangles;
-    } else if (k < n) {
-      near[k + 1] += l.triangles;
-    }
-  }
+  std::vector<uint64_t> near = nearHistogram(hits, camera.nearPlane(), loads, threads);
   for (size_t k = 1; k <= n; ++k) near[k] += near[k - 1];
   const double pixelsPerRay = double(camera.width()) * double(camera.height()) / double(rays);
   double best = std::numeric_limits<double>::infinity(), z = camera.nearPlane();
   for (size_t k = 0; k <= n; ++k) {
     const double unfinished = double(n - k) * pixelsPerRay;  // hits beyond the candidate
-    const double cost = near[k] + rayCost * unfinished;
+    const double cost = double(near[k]) + rayCost * unfinished;
     if (cost < best) {
       best = cost;
       z = k == 0 ? camera.nearPlane() : hits[k - 1];
@@ -116,7 +137,7 @@ PlaneDecision PartitionPlane::place(const EmbreeScene& embree, const Camera& cam
   PlaneDecision d = coarseRayCast(embree, camera, options_.planeGrid, &hits, threads);
   if (options_.costPlane)
     d.depth = costPlane(std::move(hits), d.coarseRays, camera, loads,
-                        options_.usesPvl() ? kRayCost : kNaiveRayCost);
+                        options_.usesPvl() ? kRayCost : kNaiveRayCost, threads);
   have_ = true;
   at_ = camera;
   depth_ = d.depth;

@@ -63,6 +63,10 @@ class PartitionPlane {
   // loads: the culled leaves (used by the cost plane only); the coarse rays go on `threads`.
   PlaneDecision place(const EmbreeScene& embree, const Camera& camera,
                       std::span<const LeafLoad> loads = {}, int threads = 1);
+  // Whether place() for this camera reads the leaves' loads (a cost plane to compute, not reused).
+  bool needsLoads(const Camera& camera) const {
+    return options_.dynamicPlane() && options_.costPlane && !stillValid(camera);
+  }
   // After the near pass: how many pixels it left unfinished (feeds reuse rule 5).
   void observe(uint64_t unfinished);
 
@@ -71,9 +75,10 @@ class PartitionPlane {
   static PlaneDecision coarseRayCast(const EmbreeScene& embree, const Camera& camera, int grid,
                                      std::vector<double>* hits = nullptr, int threads = 1);
   // The cost plane from the coarse hit depths of `rays` rays and the culled leaves' loads, one
-  // ray-cast pixel costing rayCost near triangles.
+  // ray-cast pixel costing rayCost near triangles; the loads are binned on `threads` threads
+  // (integer counts: the same plane for any thread count).
   static double costPlane(std::vector<double> hits, uint64_t rays, const Camera& camera,
-                          std::span<const LeafLoad> loads, double rayCost);
+                          std::span<const LeafLoad> loads, double rayCost, int threads = 1);
 
  private:
   bool stillValid(const Camera& camera) const;

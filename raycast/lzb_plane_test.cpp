@@ -135,6 +135,22 @@ TEST(PartitionPlane, CostPlaneWeighsNearTrianglesAgainstRays) {
   EXPECT_EQ(PartitionPlane::costPlane({}, 16, cam, loads, 12.0), 0.1);
 }
 
+// The loads are binned on threads (past 65536 leaves): the same plane for any thread count, and
+// the one a single leaf of their summed triangles at the same start gives.
+TEST(PartitionPlane, CostPlaneIsTheSameOnAnyThreadCount) {
+  const Camera cam = headOn(4.0);
+  std::vector<double> hits;
+  for (int i = 0; i < 16; ++i) hits.push_back(1.0 + 6.0 * i);
+  std::vector<LeafLoad> many;
+  for (int i = 0; i < 200000; ++i) many.push_back({i % 2 ? 40.0 : 3.0, i % 2 ? 1u : 0u});
+  const double one = PartitionPlane::costPlane(hits, 16, cam, many, 12.0, 1);
+  EXPECT_EQ(PartitionPlane::costPlane(hits, 16, cam, many, 12.0, 2), one);
+  EXPECT_EQ(PartitionPlane::costPlane(hits, 16, cam, many, 12.0, 3), one);
+  const std::vector<LeafLoad> summed = {{40.0, 100000u}};
+  EXPECT_EQ(PartitionPlane::costPlane(hits, 16, cam, summed, 12.0, 1), one);
+  EXPECT_EQ(one, 37.0) << "100000 triangles from 40 on against 192-pixel rays: stop before them";
+}
+
 TEST(PartitionPlane, CostModeIsDynamicAndReusable) {
   const Scene scene = testing::quadScene();
   const EmbreeScene embree(scene, {});

@@ -151,13 +151,19 @@ void LzbRenderer::cull(Frame& f) {
 }
 
 void LzbRenderer::placePlane(Frame& f) {
-  std::vector<LeafLoad> loads;
-  if (lzb_.costPlane) {
-    loads.reserve(culled_.leaves.size());
-    for (const CullLeaf& l : culled_.leaves)
-      loads.push_back(
-          {l.depthMin,
-           uint32_t(accel_->node(culled_.paths[l.path].node).leafTriangles(l.leaf).size())});
+  std::span<const LeafLoad> loads;
+  if (plane_.needsLoads(*f.camera)) {
+    loads_.resize(culled_.leaves.size());  // kept from frame to frame: no fresh pages
+    const long paths = long(culled_.paths.size());
+#pragma omp parallel for schedule(dynamic, 16) num_threads(options_.threads) if (paths > 64)
+    for (long p = 0; p < paths; ++p) {
+      const CullPath& path = culled_.paths[size_t(p)];
+      const NodeAccel& a = accel_->node(path.node);
+      for (uint32_t i = path.firstLeaf; i < path.firstLeaf + path.leafCount; ++i)
+        loads_[i] = {culled_.leaves[i].depthMin,
+                     uint32_t(a.leafTriangles(culled_.leaves[i].leaf).size())};
+    }
+    loads = loads_;
   }
   last_.plane = plane_.place(*embree_, *f.camera, loads, options_.threads);
   f.zClip = last_.plane.depth;

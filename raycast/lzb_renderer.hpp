@@ -150,6 +150,7 @@ class LzbRenderer : public Renderer {
   CulledScene culled_;
   std::unique_ptr<OorObjects> oor_;
   NativeRasterizer native_;    // --near-render / --pvl-render native
+  std::vector<LeafLoad> loads_;  // the cost plane's, per culled leaf
   std::vector<uint8_t> open_;  // the near pass's unfinished pixels (1), per pixel
   std::vector<uint64_t> mine_, covered_;  // covered pixels, 64 a word: this rank's, every rank's
   Framebuffer farPass_;

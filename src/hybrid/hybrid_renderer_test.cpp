@@ -108,6 +108,36 @@ TEST(HybridRenderer, SubPixelFieldIsSampledAndShowsVisibleTriangles) {
   EXPECT_LT(hs.counts.value("pvl_size", 0.0), 0.1 * ls.counts.value("pvl_size", 0.0));
 }
 
+// The rule's test of a whole placement (mayTakeLeaves, which spares the point pass a look at
+// every culled leaf) never turns away a placement with a leaf the rule samples.
+TEST(HybridRenderer, PlacementTestNeverHidesASampledLeaf) {
+  const Scene scene = loadScene("builtin:city?blocks=4", true);
+  const LzbAccel accel(scene, LzbAccelParams{});
+  const hybrid::LeafAreas areas(accel);
+  uint64_t sampledLeaves = 0, placementsTurnedAway = 0;
+  for (double threshold : {1e-3, 0.1, 10.0})
+    for (int f : {0, 2}) {
+      const Camera cam = testing::pathFrame(scene, f, 4, 192, 144);
+      hybrid::SampledLeafRule rule(accel, areas, cam.pixelsPerUnitAt(1.0), threshold);
+      rule.setPlane(cam.nearPlane());
+      const CulledScene culled = cullScene(accel, cam);  // (every leaf listed, none taken whole)
+      for (const CullPath& p : culled.paths) {
+        const LeafPlacement placement{p.depthGrad, p.depthOffset,
+                                      maxAreaScale(glm::dmat3(p.world))};
+        const bool may = rule.mayTakeLeaves(p.node, placement);
+        placementsTurnedAway += !may;
+        for (uint32_t l = p.firstLeaf; l < p.firstLeaf + p.leafCount; ++l) {
+          const CullLeaf& leaf = culled.leaves[l];
+          if (!rule.sampled(p.node, leaf.leaf, leaf.depthMin, placement.areaScale)) continue;
+          ++sampledLeaves;
+          EXPECT_TRUE(may) << "threshold " << threshold << ", frame " << f;
+        }
+      }
+    }
+  EXPECT_GT(sampledLeaves, 0u);
+  EXPECT_GT(placementsTurnedAway, 0u);
+}
+
 // With the automatic threshold the field (triangles of ~0.01-0.1 pixel here) is drawn by the
 // rays and the PVL, exactly: sampling it cost more than lazy ray casting and lost accuracy.
 TEST(HybridRenderer, AutomaticThresholdDrawsTheFieldExactly) {

@@ -1,6 +1,7 @@
 #include "src/hybrid/leaf_areas.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <numeric>
 
 #include "src/core/affine.hpp"
@@ -83,10 +84,12 @@ LeafAreas::LeafAreas(const LzbAccel& accel) {
     const uint32_t count = a.empty() ? 0 : a.octree().nodeCount();
     out.begin.assign(size_t(count) + 1, 0);
     out.maxArea.assign(count, 0.0);
+    out.leastLeafMax = std::numeric_limits<double>::infinity();
     for (uint32_t leaf = 0; leaf < count; ++leaf) {
       out.begin[leaf] = uint32_t(out.prefix.size());
       const std::span<const uint32_t> tris = a.leafTriangles(leaf);
       for (uint32_t t : tris) out.maxArea[leaf] = std::max(out.maxArea[leaf], area[t]);
+      if (!tris.empty()) out.leastLeafMax = std::min(out.leastLeafMax, out.maxArea[leaf]);
       list(std::vector<uint32_t>(tris.begin(), tris.end()), out.order, out.prefix);
     }
     out.begin[count] = uint32_t(out.prefix.size());

@@ -45,6 +45,8 @@ class LeafAreas {
     return b >= 1.0 ? n.guide[std::min(size_t(b) - 1, n.guide.size() - 1)] : 0;
   }
   double nodeMaxArea(uint32_t node) const { return nodes_[node].wholeMax; }
+  // The smallest maxArea over the node's leaves with triangles (infinite without any).
+  double leastLeafMaxArea(uint32_t node) const { return nodes_[node].leastLeafMax; }
   // The node with everything it instances, for the point pass to sample a whole instanced
   // subtree. Its instances flattened: chains of nodes with instances only are replaced by their
   // instances, composed, level by level while a node keeps at most kFlatBudget entries (nested
@@ -74,7 +76,7 @@ class LeafAreas {
     std::vector<uint32_t> wholeOrder;  // all of the node's triangles, along the curve
     std::vector<double> wholePrefix;   // per position of wholeOrder
     std::vector<uint32_t> guide;  // [b]: the first position whose prefix passes b / size of it
-    double wholeMax = 0.0;
+    double wholeMax = 0.0, leastLeafMax = 0.0;
     std::vector<FlatInstance> flat;
     std::vector<double> flatPrefix;  // 1 + flat entries
     double subtreeMax = 0.0;

@@ -243,6 +243,14 @@ bool SampledLeafRule::sampled(uint32_t node, uint32_t leaf, double depthMin, dou
   return areas_.maxArea(node, leaf) * areaScale * ppu * ppu < thresholdPx_;
 }
 
+bool SampledLeafRule::mayTakeLeaves(uint32_t node, const LeafPlacement& p) const {
+  double lo, hi;
+  depthRange(accel_.node(node).contentBox(0), p.depthGrad, p.depthOffset, lo, hi);
+  if (!(hi >= zClip_) || hi <= 0.0) return false;  // every leaf's nearest depth is at most hi
+  const double ppu = pixelScale_ / hi;
+  return areas_.leastLeafMaxArea(node) * p.areaScale * ppu * ppu < thresholdPx_;
+}
+
 bool SampledLeafRule::drawnElsewhere(uint32_t node, uint32_t leaf, const LeafPlacement& p) const {
   double lo, hi;
   depthRange(accel_.node(node).contentBox(leaf), p.depthGrad, p.depthOffset, lo, hi);
@@ -289,11 +297,11 @@ SampledUnits sampledLeaves(const LzbAccel& accel, const LeafAreas& areas,
     ++out.accepted;
     if (samples > 0) out.leaves.push_back({path, leaf, key, samples, depthMin});
   };
-  size_t l = 0;  // culled.leaves are grouped by path, in path order
   for (uint32_t path = 0; path < culled.paths.size(); ++path) {
     const CullPath& p = culled.paths[path];
     const LeafPlacement placement{p.depthGrad, p.depthOffset, maxAreaScale(glm::dmat3(p.world))};
     const bool whole = p.drawnElsewhere;  // the cull applied the whole-node rule
+    const bool leaves = !whole && !p.subtree && rule.mayTakeLeaves(p.node, placement);
     if (p.subtree) {
       double lo, hi;
       depthRange(accel.scene().nodeBounds[p.node], p.depthGrad, p.depthOffset, lo, hi);
@@ -304,9 +312,10 @@ SampledUnits sampledLeaves(const LzbAccel& accel, const LeafAreas& areas,
       const std::span<const double> prefix = areas.nodePrefix(p.node);
       add(path, kWholeNode, prefix.back(), placement.areaScale, lo);
     }
-    for (; l < culled.leaves.size() && culled.leaves[l].path == path; ++l) {
+    if (!leaves) continue;
+    for (uint32_t l = p.firstLeaf; l < p.firstLeaf + p.leafCount; ++l) {
       const CullLeaf& leaf = culled.leaves[l];
-      if (!whole && rule.sampled(p.node, leaf.leaf, leaf.depthMin, placement.areaScale))
+      if (rule.sampled(p.node, leaf.leaf, leaf.depthMin, placement.areaScale))
         add(path, leaf.leaf, areas.total(p.node, leaf.leaf), placement.areaScale, leaf.depthMin);
     }
   }

@@ -57,6 +57,9 @@ class SampledLeafRule : public LeafFilter {
   bool subtreeDrawnElsewhere(uint32_t node, const LeafPlacement& p) const override;
   // The rule with the leaf's nearest view depth known (the cull's CullLeaf::depthMin).
   bool sampled(uint32_t node, uint32_t leaf, double depthMin, double areaScale) const;
+  // False when no leaf of the placed node can be sampled (judged at its farthest depth with its
+  // smallest leaf's largest triangle), so its leaves need no look one by one.
+  bool mayTakeLeaves(uint32_t node, const LeafPlacement& p) const;
 
  private:
   // The whole-unit rule: a box of the unit (node frame) within the depth ratio, its largest
