@@ -126,10 +126,11 @@ class Culler {
   CullCounts& listed_;
 };
 
-// Appends the parts to out in their order, each at its offset at once (indices shifted).
+// Joins the parts into out in their order, each copied to its offset at once (indices shifted);
+// out's lists are resized, not cleared, so that only new room is value-initialized.
 void joinParts(std::span<const CulledScene> parts, CulledScene& out, int threads) {
-  std::vector<size_t> pathAt(parts.size() + 1, out.paths.size()),
-      leafAt(parts.size() + 1, out.leaves.size());
+  std::vector<size_t> pathAt(parts.size() + 1, 0), leafAt(parts.size() + 1, 0);
+  out.instancesVisited = 0;
   for (size_t k = 0; k < parts.size(); ++k) {
     pathAt[k + 1] = pathAt[k] + parts[k].paths.size();
     leafAt[k + 1] = leafAt[k] + parts[k].leaves.size();
@@ -160,27 +161,29 @@ void joinParts(std::span<const CulledScene> parts, CulledScene& out, int threads
 
 void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, int threads,
                const LeafFilter* filter) {
-  out.paths.clear();
-  out.leaves.clear();
-  out.instancesVisited = 0;
+  // Part 0 is the root's own, part k + 1 its visible instance k's, walked in parallel; the parts
+  // are joined in that order, so the result is the serial walk's whatever the thread count.
+  std::vector<CulledScene>& parts = out.parts;
+  if (parts.empty()) parts.resize(1);
+  const auto clear = [](CulledScene& part) {
+    part.paths.clear();
+    part.leaves.clear();
+    part.instancesVisited = 0;
+  };
+  clear(parts[0]);
   CullCounts listed;
   Culler culler(accel, camera, filter, listed);
   std::vector<ChildVisit> children;
-  culler.visit(accel.scene().root, glm::dmat4(1.0), 0, out, &children);
-  // The root's visible instances are walked in parallel, each into a part of its own; parts are
-  // appended in instance order, so the result is the serial walk's whatever the thread count.
-  std::vector<CulledScene>& parts = out.parts;
-  if (parts.size() < children.size()) parts.resize(children.size());
+  culler.visit(accel.scene().root, glm::dmat4(1.0), 0, parts[0], &children);
+  if (parts.size() < children.size() + 1) parts.resize(children.size() + 1);
   std::exception_ptr failure;
   const long count = long(children.size());
 #pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(threads, 1)) if (count > 1)
   for (long k = 0; k < count; ++k) {
     try {
       const ChildVisit& c = children[size_t(k)];
-      CulledScene& part = parts[size_t(k)];
-      part.paths.clear();
-      part.leaves.clear();
-      part.instancesVisited = 0;
+      CulledScene& part = parts[size_t(k) + 1];
+      clear(part);
       Culler(accel, camera, filter, listed).visit(c.node, c.world, c.idBase, part);
     } catch (...) {
 #pragma omp critical
@@ -188,7 +191,7 @@ void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, in
     }
   }
   if (failure) std::rethrow_exception(failure);
-  joinParts(std::span<const CulledScene>(parts).first(children.size()), out, threads);
+  joinParts(std::span<const CulledScene>(parts).first(children.size() + 1), out, threads);
 }
 
 CulledScene cullScene(const LzbAccel& accel, const Camera& camera, int threads,
