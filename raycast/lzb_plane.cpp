@@ -119,7 +119,8 @@ bool PartitionPlane::stillValid(const Camera& c) const {
 }
 
 PlaneDecision PartitionPlane::place(const EmbreeScene& embree, const Camera& camera,
-                                    std::span<const LeafLoad> loads, int threads) {
+                                    std::span<const LeafLoad> loads, int threads,
+                                    bool directRays) {
   if (!options_.dynamicPlane()) {
     PlaneDecision d;
     d.depth =
@@ -137,7 +138,7 @@ PlaneDecision PartitionPlane::place(const EmbreeScene& embree, const Camera& cam
   PlaneDecision d = coarseRayCast(embree, camera, options_.planeGrid, &hits, threads);
   if (options_.costPlane)
     d.depth = costPlane(std::move(hits), d.coarseRays, camera, loads,
-                        options_.usesPvl() ? kRayCost : kNaiveRayCost, threads);
+                        directRays || !options_.usesPvl() ? kNaiveRayCost : kRayCost, threads);
   have_ = true;
   at_ = camera;
   depth_ = d.depth;

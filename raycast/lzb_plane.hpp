@@ -60,9 +60,12 @@ class PartitionPlane {
   explicit PartitionPlane(const LzbOptions& options) : options_(options) {}
 
   // This frame's plane. embree: the whole scene (coarse rays), unused for a static plane;
-  // loads: the culled leaves (used by the cost plane only); the coarse rays go on `threads`.
+  // loads: the culled leaves (used by the cost plane only); the coarse rays go on `threads`;
+  // directRays: the far pass is Embree's hits without a PVL (as the naive stage's), whose
+  // pixels the cost plane weighs at kNaiveRayCost.
   PlaneDecision place(const EmbreeScene& embree, const Camera& camera,
-                      std::span<const LeafLoad> loads = {}, int threads = 1);
+                      std::span<const LeafLoad> loads = {}, int threads = 1,
+                      bool directRays = false);
   // Whether place() for this camera reads the leaves' loads (a cost plane to compute, not reused).
   bool needsLoads(const Camera& camera) const {
     return options_.dynamicPlane() && options_.costPlane && !stillValid(camera);

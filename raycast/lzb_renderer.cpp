@@ -165,7 +165,7 @@ void LzbRenderer::placePlane(Frame& f) {
     }
     loads = loads_;
   }
-  last_.plane = plane_.place(*embree_, *f.camera, loads, options_.threads);
+  last_.plane = plane_.place(*embree_, *f.camera, loads, options_.threads, directRays(f));
   f.zClip = last_.plane.depth;
 }
 
@@ -176,7 +176,7 @@ void LzbRenderer::drawNearPass(Frame& f, Framebuffer& fb) {
   // fb comes cleared (the Renderer contract): a second clear cost 1-2 ms a 1080p frame.
   // With a GL PVL to come after a GL near pass, the pass set stays open: the PVL is drawn into
   // the same z-buffer.
-  const bool glPvl = lzb_.usesPvl() && lzb_.pvlRender == ZBufferKind::kGl;
+  const bool glPvl = !directRays(f) && lzb_.pvlRender == ZBufferKind::kGl;
   if (f.nearLists.triangles > 0 && f.zClip > camera.nearPlane()) {
     f.nearDrawn = f.nearLists.triangles;
     if (lzb_.nearRender == ZBufferKind::kNative) {
@@ -276,7 +276,7 @@ void LzbRenderer::castFarRays(Frame& f) {
   f.tiles = dealTiles(f, input);
   const long count = f.unfinished > 0 ? long(f.tiles.size()) : 0;
   std::vector<std::vector<uint32_t>> tilePixels(static_cast<size_t>(count));
-  if (!lzb_.usesPvl()) {
+  if (directRays(f)) {
     castNaiveRays(f, input, tilePixels);
   } else {
     // The walk alone skips what a composing method draws elsewhere (its LeafFilter).
@@ -450,13 +450,13 @@ void LzbRenderer::countFrame(const Frame& f, FrameStats& stats) const {
     stats.addCount("visibility_tests", double(w.visibilityTests));
     stats.addCount("instance_walks", double(w.instanceWalks));
     stats.addCount("rays_hit", double(w.hits));
-  } else if (lzb_.usesPvl()) {
+  } else if (!directRays(f)) {
     const HitLeafCounts& h = last_.hitLeaves;
     stats.addCount("octree_nodes_visited", double(h.nodesVisited));
     stats.addCount("rays_hit", double(h.hits));
     stats.addCount("hit_placements_resolved", double(h.resolves));
   }
-  if (lzb_.usesPvl()) {
+  if (!directRays(f)) {
     stats.addCount("pvl_size", double(last_.pvl.triangles));
     stats.addCount("pvl_leaves", double(last_.pvl.leaves));
     // Triangles (pieces, after clipping) that may cover a pixel centre of the image.

@@ -74,6 +74,9 @@ class LzbRenderer : public Renderer {
     // (whole placed nodes) and the walk skips (so the far rays walk whatever --lzb-rays says).
     const LeafFilter* leafFilter = nullptr;
     bool walked = false;  // the far rays were the octree walk's (else Embree's)
+    // Set by a composing method (hybrid) before the plane: the far pass is each unfinished
+    // pixel's Embree hit (the naive stage's rays), with no PVL, whatever --lzb-stage says.
+    bool directRays = false;
   };
   // 1. Hierarchical view-frustum culling of the octrees.
   void cull(Frame& f);
@@ -90,6 +93,8 @@ class LzbRenderer : public Renderer {
   void castFarRays(Frame& f);
   // 6. The PVL by z-buffer on top of the near pass.
   void renderPvl(Frame& f, Framebuffer& fb);
+  // Whether this frame's far pass is direct Embree hits (the naive stage, or Frame::directRays).
+  bool directRays(const Frame& f) const { return !lzb_.usesPvl() || f.directRays; }
   // 7. A far pass drawn apart (naive rays, a GL PVL after a native near pass) joins fb by the
   // compositing key.
   void combine(Frame& f, Framebuffer& fb);

@@ -35,6 +35,11 @@ class HybridMethod : public Method {
                     "(coarse ray casting, cost model) or a fraction F in (0, 1) of the frustum "
                     "depth");
     addTileDealOption(c, tileDeal_);
+    c.add_option("--far-pass", farPass_,
+                 "hybrid: the exact far scene by lazy ray casting -> PVL -> z-buffer (lazy), by "
+                 "each unfinished pixel's Embree hit (direct), or auto: direct from 16 culled "
+                 "triangles per pixel; lazy wherever anything is sampled")
+        ->capture_default_str();
   }
   void validate() override {
     params_.oversample = oversample_;
@@ -49,6 +54,7 @@ class HybridMethod : public Method {
     params_.dropBackfaces = backfaces_ == "drop";
     parsePlane(plane_, "--plane", params_.lzb);
     params_.lzb.tileDeal = parseTileDeal(tileDeal_, "--tile-deal");
+    params_.farPass = hybrid::parseFarPass(farPass_, "--far-pass");
     params_.validate();
   }
   // runs/tradeoff/README.md "Presets".
@@ -64,7 +70,8 @@ class HybridMethod : public Method {
 
  private:
   double oversample_ = 1.0;
-  std::string fallback_ = "auto", backfaces_ = "drop", plane_ = "cost", tileDeal_ = "interleaved";
+  std::string fallback_ = "auto", backfaces_ = "drop", plane_ = "cost", tileDeal_ = "interleaved",
+              farPass_ = "auto";
   hybrid::HybridParams params_;
 };
 

@@ -17,6 +17,17 @@ void HybridParams::validate() const {
   lzb::validate(lzb);
 }
 
+FarPass parseFarPass(const std::string& text, const std::string& field) {
+  if (text == "auto") return FarPass::kAuto;
+  if (text == "lazy") return FarPass::kLazy;
+  if (text == "direct") return FarPass::kDirect;
+  throw InputError(field + ": expected auto, lazy or direct, got '" + text + "'");
+}
+
+std::string toString(FarPass p) {
+  return p == FarPass::kAuto ? "auto" : p == FarPass::kLazy ? "lazy" : "direct";
+}
+
 PointParams HybridParams::pointParams(int width, int height) const {
   const double lnPixels = std::log(double(width) * double(height));
   PointParams p;
@@ -34,6 +45,7 @@ nlohmann::json HybridParams::toJson() const {
           {"backfaces", dropBackfaces ? "drop" : "keep"},
           {"plane", lzb.dynamicPlane() ? nlohmann::json(lzb.costPlane ? "cost" : "auto")
                                        : nlohmann::json(lzb.planeFraction)},
+          {"far_pass", toString(farPass)},
           {"lzb_stage", toString(lzb.stage)},
           {"tile_deal", toString(lzb.tileDeal)}};
 }
@@ -91,6 +103,7 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
   f.leafFilter = rule_.get();  // the cull leaves wholly sampled nodes out
   Stopwatch clock;
   lzb_.cull(f);
+  f.directRays = directRaysPay(camera);
   stats.addStage("cull", clock.lap());
   lzb_.placePlane(f);
   rule_->setPlane(f.zClip);
@@ -101,17 +114,22 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
   stats.addStage("unfinished", clock.lap());
   drawPoints(f, pp, frame, stats);
   stats.addStage("points", clock.lap());
-  if (f.unfinished > 0) {
-    lzb_.projectFarObjects(f);
-    stats.addStage("oor_project", clock.lap());
+  if (f.directRays) {
+    lzb_.castFarRays(f);
+    stats.addStage("raycast", clock.lap());
+  } else {
+    if (f.unfinished > 0) {
+      lzb_.projectFarObjects(f);
+      stats.addStage("oor_project", clock.lap());
+    }
+    lzb_.castFarRays(f);
+    stats.addStage("pvl_find", clock.lap());
+    lzb_.renderPvl(f, fb);
+    stats.addStage("pvl_render", clock.lap());
   }
-  lzb_.castFarRays(f);
-  stats.addStage("pvl_find", clock.lap());
-  lzb_.renderPvl(f, fb);
-  stats.addStage("pvl_render", clock.lap());
+  lzb_.combine(f, fb);  // direct rays' hits (no samples with them) before the pixel count
   countPixels(f, fb, stats);
   if (pointsDrawn_) compositeNearer(fb, points_);
-  lzb_.combine(f, fb);
   stats.addStage("combine", clock.lap());
   lzb_.countFrame(f, stats);
 }
@@ -125,7 +143,11 @@ void HybridRenderer::drawPoints(LzbRenderer::Frame& f, const PointParams& pp, in
   const std::vector<SampledLeaf>& leaves = units.leaves;
   // Nothing the rays could meet is sampled (the rays stay in the culled frustum): they walk
   // unfiltered, which is much cheaper through instances (city 1080p: pvl_find 64 -> ~50 ms).
-  if (units.accepted == 0) f.leafFilter = nullptr;
+  // Otherwise the rays must walk, skipping the sampled units, which Embree's cannot.
+  if (units.accepted == 0)
+    f.leafFilter = nullptr;
+  else
+    f.directRays = false;
   std::vector<double> costs(leaves.size());
   double total = 0.0;
   for (size_t i = 0; i < leaves.size(); ++i) total += costs[i] = double(leaves[i].samples);
@@ -149,8 +171,21 @@ void HybridRenderer::drawPoints(LzbRenderer::Frame& f, const PointParams& pp, in
   stats.addCount("samples_splatted", double(pc.splatted));
 }
 
+bool HybridRenderer::directRaysPay(const Camera& camera) const {
+  if (params_.farPass == FarPass::kLazy) return false;
+  uint64_t triangles = 0;
+  for (const CullPath& p : lzb_.culled().paths) {
+    if (p.drawnElsewhere || p.subtree) return false;
+    triangles += p.leafTriangles;
+  }
+  return params_.farPass == FarPass::kDirect ||
+         double(triangles) >=
+             HybridParams::kDirectTrianglesPerPixel * double(camera.width()) * camera.height();
+}
+
 // Which pass finished each pixel of this rank's tiles: the near pass (shared), the samples or
-// the PVL (counted before compositing with the other ranks, whose samples may still win).
+// the PVL (or the direct rays), counted before compositing with the other ranks, whose samples
+// may still win.
 void HybridRenderer::countPixels(const LzbRenderer::Frame& f, const Framebuffer& fb,
                                  FrameStats& stats) const {
   const ScreenTiles tiles(fb.width, fb.height);
@@ -182,7 +217,7 @@ void HybridRenderer::countPixels(const LzbRenderer::Frame& f, const Framebuffer&
   }
   stats.setShared("near_pixels", double(fb.size() - f.unfinished));
   stats.addCount("sample_pixels", double(samplePixels));
-  stats.addCount("pvl_pixels", double(pvlPixels));
+  stats.addCount(f.directRays ? "ray_pixels" : "pvl_pixels", double(pvlPixels));
 }
 
 }  // namespace lzb::hybrid

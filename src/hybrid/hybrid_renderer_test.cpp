@@ -6,7 +6,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "raycast/lzb_test_util.hpp"
 #include "raycast/raycast_renderer.hpp"
@@ -151,31 +154,66 @@ TEST(HybridRenderer, AutomaticThresholdDrawsTheFieldExactly) {
   EXPECT_GE(a.correctRateCovered, 0.999);
 }
 
-TEST(HybridRenderer, RankSharesCompositeToTheOneRankImageOnASampledField) {
-  const Scene* scene = field();
-  if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
-  const Camera cam = testing::pathFrame(*scene, 1, 4, 160, 120);
-  HybridRenderer one(*scene, testing::lzbRenderOptions(2), sampling());
+// The 2- and 3-rank shares of `params`' frame composite to the 1-rank image, and the counts
+// `split` of the ranks are shares of the 1-rank counts (each less, summing to them).
+void expectRankSharesComposite(const Scene& scene, const Camera& cam, const HybridParams& params,
+                               const std::vector<std::string>& split) {
+  HybridRenderer one(scene, testing::lzbRenderOptions(2), params);
   FrameStats alone;
   const Framebuffer single = testing::renderFrame(one, cam, {}, &alone);
   for (int size : {2, 3}) {
     Framebuffer composite(cam.width(), cam.height());
-    double samples = 0.0, rays = 0.0;
+    std::vector<double> sums(split.size(), 0.0);
     for (int rank = 0; rank < size; ++rank) {
-      HybridRenderer r(*scene, testing::lzbRenderOptions(1), sampling());
+      HybridRenderer r(scene, testing::lzbRenderOptions(1), params);
       FrameStats stats;
       const Framebuffer part = testing::renderFrame(r, cam, {rank, size}, &stats);
       compositeNearer(composite, part);
-      samples += stats.counts.value("samples_drawn", 0.0);
-      rays += stats.counts.value("rays_cast", 0.0);
-      // Each rank did a share, not the whole.
-      EXPECT_LT(stats.counts.value("samples_drawn", 0.0), alone.counts.value("samples_drawn", 0.0));
+      for (size_t k = 0; k < split.size(); ++k) {
+        sums[k] += stats.counts.value(split[k], 0.0);
+        EXPECT_LT(stats.counts.value(split[k], 0.0), alone.counts.value(split[k], 0.0)) << split[k];
+      }
     }
     EXPECT_EQ(composite.id, single.id) << size << " ranks";
     EXPECT_EQ(composite.depth, single.depth) << size << " ranks";
-    EXPECT_EQ(samples, alone.counts.value("samples_drawn", -1.0)) << size << " ranks";
-    EXPECT_EQ(rays, alone.counts.value("rays_cast", -1.0)) << size << " ranks";
+    for (size_t k = 0; k < split.size(); ++k)
+      EXPECT_EQ(sums[k], alone.counts.value(split[k], -1.0)) << split[k] << ", " << size << " ranks";
   }
+}
+
+TEST(HybridRenderer, RankSharesCompositeToTheOneRankImageOnASampledField) {
+  const Scene* scene = field();
+  if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
+  expectRankSharesComposite(*scene, testing::pathFrame(*scene, 1, 4, 160, 120), sampling(),
+                            {"samples_drawn", "rays_cast"});
+}
+
+// The far pass by cost: on the field (~680 culled triangles a pixel at 160 x 120) each
+// unfinished pixel takes its Embree hit, no PVL; asked for lazy, the PVL draws it; both exact,
+// and the direct rays split over ranks to the 1-rank image. The city stays lazy (the test above).
+TEST(HybridRenderer, DenseFarSceneIsCastDirectlyAndExactly) {
+  const Scene* scene = field();
+  if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
+  const Camera cam = testing::pathFrame(*scene, 1, 4, 160, 120);
+  HybridParams lazy;
+  lazy.farPass = hybrid::FarPass::kLazy;
+  for (const HybridParams& params : {HybridParams{}, lazy}) {
+    const bool direct = params.farPass == hybrid::FarPass::kAuto;
+    HybridRenderer hybrid(*scene, testing::lzbRenderOptions(), params);
+    FrameStats stats;
+    const Framebuffer image = testing::renderFrame(hybrid, cam, {}, &stats);
+    const auto& stages = stats.stageSeconds;
+    EXPECT_EQ(std::count_if(stages.begin(), stages.end(),
+                            [](const auto& st) { return st.first == "raycast"; }),
+              direct ? 1 : 0);
+    EXPECT_EQ(stats.counts.contains("pvl_size"), !direct);
+    EXPECT_GT(stats.counts.value(direct ? "ray_pixels" : "pvl_pixels", 0.0), 0.0);
+    EXPECT_EQ(stats.shared.value("near_pixels", 0.0) +
+                  stats.counts.value(direct ? "ray_pixels" : "pvl_pixels", 0.0),
+              double(image.coveredCount()));
+    EXPECT_GE(accuracy(*scene, cam, image).correctRateCovered, 0.999) << direct;
+  }
+  expectRankSharesComposite(*scene, cam, HybridParams{}, {"rays_cast"});
 }
 
 // A board of 5.4 * 10^8 sub-pixel squares built by 8 levels of nested 2 x 2 instancing: whole
