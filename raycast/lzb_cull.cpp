@@ -34,12 +34,20 @@ struct ChildVisit {
   uint64_t idBase;
 };
 
+// The camera's frustum with its far plane at view depth farDepth when that is nearer.
+Frustum frustumTo(const Camera& camera, double farDepth) {
+  Frustum f = camera.frustum();
+  if (farDepth < camera.farPlane())
+    f.planes[5] = Plane{-camera.forward(), glm::dot(camera.forward(), camera.position()) + farDepth};
+  return f;
+}
+
 class Culler {
  public:
-  Culler(const LzbAccel& accel, const Camera& camera, const LeafFilter* filter,
+  Culler(const LzbAccel& accel, const Camera& camera, double farDepth, const LeafFilter* filter,
          CullCounts& listed)
-      : accel_(accel), scene_(accel.scene()), camera_(camera), frustum_(camera.frustum()),
-        filter_(filter), listed_(listed) {}
+      : accel_(accel), scene_(accel.scene()), camera_(camera),
+        frustum_(frustumTo(camera, farDepth)), filter_(filter), listed_(listed) {}
 
   // Culls node's octree into out and walks its visible instances, or, with `deferred`, lists
   // them there (in instance order) for the caller to walk.
@@ -160,7 +168,7 @@ void joinParts(std::span<const CulledScene> parts, CulledScene& out, int threads
 }  // namespace
 
 void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, int threads,
-               const LeafFilter* filter) {
+               const LeafFilter* filter, double farDepth) {
   // Part 0 is the root's own, part k + 1 its visible instance k's, walked in parallel; the parts
   // are joined in that order, so the result is the serial walk's whatever the thread count.
   std::vector<CulledScene>& parts = out.parts;
@@ -172,7 +180,7 @@ void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, in
   };
   clear(parts[0]);
   CullCounts listed;
-  Culler culler(accel, camera, filter, listed);
+  Culler culler(accel, camera, farDepth, filter, listed);
   std::vector<ChildVisit> children;
   culler.visit(accel.scene().root, glm::dmat4(1.0), 0, parts[0], &children);
   if (parts.size() < children.size() + 1) parts.resize(children.size() + 1);
@@ -184,7 +192,7 @@ void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, in
       const ChildVisit& c = children[size_t(k)];
       CulledScene& part = parts[size_t(k) + 1];
       clear(part);
-      Culler(accel, camera, filter, listed).visit(c.node, c.world, c.idBase, part);
+      Culler(accel, camera, farDepth, filter, listed).visit(c.node, c.world, c.idBase, part);
     } catch (...) {
 #pragma omp critical
       if (!failure) failure = std::current_exception();

@@ -62,8 +62,11 @@ constexpr size_t kMaxCullLeaves = size_t(1) << 24;
 // whose whole subtree the filter takes is listed with subtree set too, and not walked into.
 CulledScene cullScene(const LzbAccel& accel, const Camera& camera, int threads = 1,
                       const LeafFilter* filter = nullptr);
-// The same into `out` (cleared first), reusing its memory frame after frame.
+// The same into `out` (cleared first), reusing its memory frame after frame. With farDepth
+// nearer than the camera's far plane, the frustum ends there: every leaf whose content box is
+// not wholly beyond that view depth is listed, as the whole cull lists it.
 void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, int threads = 1,
-               const LeafFilter* filter = nullptr);
+               const LeafFilter* filter = nullptr,
+               double farDepth = std::numeric_limits<double>::infinity());
 
 }  // namespace lzb

@@ -2,6 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <set>
+#include <utility>
+#include <vector>
+
 #include "raycast/lzb_test_util.hpp"
 
 namespace lzb {
@@ -40,6 +45,37 @@ TEST(LzbCull, SameResultForAnyThreadCount) {
       EXPECT_EQ(one.leaves[l].depthMin, two.leaves[l].depthMin);
     }
     EXPECT_EQ(one.instancesVisited, two.instancesVisited);
+  }
+}
+
+// A cull up to a view depth lists, of the whole cull's leaves, exactly those starting before it
+// (a leaf's content box not wholly beyond).
+TEST(LzbCull, UpToADepthListsTheLeavesStartingBeforeIt) {
+  const Scene scene = loadScene("builtin:city?blocks=4", true);
+  const LzbAccel accel(scene, LzbAccelParams{});
+  const Camera cam = pathFrame(scene, 1, 4, 160, 120);
+  const CulledScene whole = cullScene(accel, cam, 2);
+  ASSERT_GT(whole.leaves.size(), 100u);
+  std::vector<double> starts;
+  for (const CullLeaf& l : whole.leaves) starts.push_back(l.depthMin);
+  std::sort(starts.begin(), starts.end());
+  for (double fraction : {0.05, 0.2, 0.5}) {  // depths between the leaves' starts
+    const double depth = starts[size_t(fraction * double(starts.size()))];
+    CulledScene part;
+    cullScene(accel, cam, part, 2, nullptr, depth);
+    std::set<std::pair<uint64_t, uint32_t>> listed, expected, all;
+    for (const CullLeaf& l : whole.leaves) all.insert({whole.paths[l.path].idBase, l.leaf});
+    for (const CullLeaf& l : part.leaves) {
+      listed.insert({part.paths[l.path].idBase, l.leaf});
+      EXPECT_LE(l.depthMin, depth * (1.0 + 1e-9));
+    }
+    for (const CullLeaf& l : whole.leaves)
+      if (l.depthMin <= depth * (1.0 - 1e-9)) expected.insert({whole.paths[l.path].idBase, l.leaf});
+    EXPECT_GT(expected.size(), 0u) << fraction;
+    EXPECT_LT(listed.size(), whole.leaves.size()) << fraction;
+    // Every leaf starting before the depth is listed, and only the whole cull's leaves are.
+    for (const auto& key : expected) EXPECT_TRUE(listed.count(key)) << fraction;
+    for (const auto& key : listed) EXPECT_TRUE(all.count(key)) << fraction;
   }
 }
 

@@ -146,8 +146,17 @@ void LzbRenderer::render(const Camera& camera, int /*frame*/, const WorkShare& s
   countFrame(f, stats);
 }
 
-void LzbRenderer::cull(Frame& f) {
-  cullScene(*accel_, *f.camera, culled_, options_.threads, f.leafFilter);
+void LzbRenderer::cull(Frame& f, double farDepth) {
+  cullScene(*accel_, *f.camera, culled_, options_.threads, f.leafFilter, farDepth);
+}
+
+double LzbRenderer::medianCoarseHit(const Camera& camera) const {
+  std::vector<double> hits;
+  PartitionPlane::coarseRayCast(*embree_, camera, lzb_.planeGrid, &hits, options_.threads);
+  if (hits.empty()) return camera.farPlane();
+  const auto mid = hits.begin() + std::ptrdiff_t(hits.size() / 2);
+  std::nth_element(hits.begin(), mid, hits.end());
+  return *mid;
 }
 
 void LzbRenderer::placePlane(Frame& f) {

@@ -18,6 +18,7 @@
 // after another, draw the whole near scene on every rank); each casts rays only in its screen
 // tiles (tile % size == rank) and draws only its PVL part; compositing all ranks' framebuffers
 // by (depth, id) gives the 1-rank image.
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -78,8 +79,11 @@ class LzbRenderer : public Renderer {
     // pixel's Embree hit (the naive stage's rays), with no PVL, whatever --lzb-stage says.
     bool directRays = false;
   };
-  // 1. Hierarchical view-frustum culling of the octrees.
-  void cull(Frame& f);
+  // 1. Hierarchical view-frustum culling of the octrees (up to view depth farDepth when it is
+  // nearer than the camera's far plane: a composing method's partial cull).
+  void cull(Frame& f, double farDepth = std::numeric_limits<double>::infinity());
+  // The median view depth of the plane's coarse rays' hits (camera far without any hit).
+  double medianCoarseHit(const Camera& camera) const;
   // 2. The partition plane z_clip.
   void placePlane(Frame& f);
   // 3. The near scene by z-buffer, clipped at the plane, straight into fb.

@@ -38,7 +38,8 @@ class HybridMethod : public Method {
     c.add_option("--far-pass", farPass_,
                  "hybrid: the exact far scene by lazy ray casting -> PVL -> z-buffer (lazy), by "
                  "each unfinished pixel's Embree hit (direct), or auto: direct from 16 culled "
-                 "triangles per pixel; lazy wherever anything is sampled")
+                 "triangles per pixel; lazy wherever a mesh or subtree is sampled whole (a direct "
+                 "frame samples nothing)")
         ->capture_default_str();
   }
   void validate() override {

@@ -1,6 +1,8 @@
 #include "src/hybrid/hybrid_renderer.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "mpi/decomposition.hpp"
@@ -102,10 +104,11 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
                                             pp.thresholdPx);
   f.leafFilter = rule_.get();  // the cull leaves wholly sampled nodes out
   Stopwatch clock;
-  lzb_.cull(f);
+  const double cullDepth = cullForFarPass(f);
   f.directRays = directRaysPay(camera);
   stats.addStage("cull", clock.lap());
   lzb_.placePlane(f);
+  f.zClip = std::min(f.zClip, cullDepth);  // a reused plane may lie beyond a partial cull
   rule_->setPlane(f.zClip);
   stats.addStage("plane", clock.lap());
   lzb_.drawNearPass(f, fb);
@@ -132,22 +135,36 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
   if (pointsDrawn_) compositeNearer(fb, points_);
   stats.addStage("combine", clock.lap());
   lzb_.countFrame(f, stats);
+  if (cullDepth < camera.farPlane()) stats.setShared("cull_depth", cullDepth);
+}
+
+double HybridRenderer::cullForFarPass(LzbRenderer::Frame& f) {
+  const Camera& camera = *f.camera;
+  const double dense = denseTriangles(camera);
+  if (params_.farPass != FarPass::kLazy && double(scene_.expandedTriangles()) >= dense) {
+    const double depth = lzb_.medianCoarseHit(camera);
+    if (depth < camera.farPlane()) {
+      lzb_.cull(f, depth);
+      if (exactlyCulledTriangles() >= dense) return depth;
+    }
+  }
+  lzb_.cull(f);
+  return std::numeric_limits<double>::infinity();
 }
 
 void HybridRenderer::drawPoints(LzbRenderer::Frame& f, const PointParams& pp, int frame,
                                 FrameStats& stats) {
   const Camera& camera = *f.camera;
   const SampleStream stream(options_.seed, uint64_t(frame));
+  // A direct frame samples nothing: each pixel's Embree hit is exact at any triangle size.
   const SampledUnits units =
-      sampledLeaves(lzb_.accel(), areas_, lzb_.culled(), *rule_, camera, pp, stream);
+      f.directRays ? SampledUnits{}
+                   : sampledLeaves(lzb_.accel(), areas_, lzb_.culled(), *rule_, camera, pp, stream);
   const std::vector<SampledLeaf>& leaves = units.leaves;
   // Nothing the rays could meet is sampled (the rays stay in the culled frustum): they walk
   // unfiltered, which is much cheaper through instances (city 1080p: pvl_find 64 -> ~50 ms).
-  // Otherwise the rays must walk, skipping the sampled units, which Embree's cannot.
-  if (units.accepted == 0)
-    f.leafFilter = nullptr;
-  else
-    f.directRays = false;
+  // Otherwise the rays must walk, skipping the sampled units.
+  if (units.accepted == 0) f.leafFilter = nullptr;
   std::vector<double> costs(leaves.size());
   double total = 0.0;
   for (size_t i = 0; i < leaves.size(); ++i) total += costs[i] = double(leaves[i].samples);
@@ -171,16 +188,24 @@ void HybridRenderer::drawPoints(LzbRenderer::Frame& f, const PointParams& pp, in
   stats.addCount("samples_splatted", double(pc.splatted));
 }
 
-bool HybridRenderer::directRaysPay(const Camera& camera) const {
-  if (params_.farPass == FarPass::kLazy) return false;
+double HybridRenderer::denseTriangles(const Camera& camera) const {
+  return HybridParams::kDirectTrianglesPerPixel * double(camera.width()) * camera.height();
+}
+
+double HybridRenderer::exactlyCulledTriangles() const {
   uint64_t triangles = 0;
   for (const CullPath& p : lzb_.culled().paths) {
-    if (p.drawnElsewhere || p.subtree) return false;
+    if (p.drawnElsewhere || p.subtree) return -1.0;
     triangles += p.leafTriangles;
   }
-  return params_.farPass == FarPass::kDirect ||
-         double(triangles) >=
-             HybridParams::kDirectTrianglesPerPixel * double(camera.width()) * camera.height();
+  return double(triangles);
+}
+
+bool HybridRenderer::directRaysPay(const Camera& camera) const {
+  if (params_.farPass == FarPass::kLazy) return false;
+  const double triangles = exactlyCulledTriangles();
+  return triangles >= 0.0 &&
+         (params_.farPass == FarPass::kDirect || triangles >= denseTriangles(camera));
 }
 
 // Which pass finished each pixel of this rank's tiles: the near pass (shared), the samples or

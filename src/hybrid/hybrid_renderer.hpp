@@ -44,7 +44,8 @@ struct HybridParams {
   static constexpr double kAutoFallbackPx = 1e-4;
   bool dropBackfaces = true;
   FarPass farPass = FarPass::kAuto;
-  // Auto: direct rays from this many culled triangle entries per pixel. A lazy ray's leaf
+  // Auto: direct rays from this many culled triangle entries per pixel (a direct frame samples
+  // nothing, and its cull may stop at the median coarse hit depth: cullForFarPass). A lazy ray's leaf
   // look-ups, OOR objects and PVL grow with the far leaves per pixel, an Embree ray hardly
   // (lzb final against naive, 2 threads: paper city 6.4 per pixel 7.4 vs 8.7 ms; the city at
   // 200 x 200, 43: 3.3 vs 2.7; forest 1080p, 33: 122 vs 88; forest 640 x 480, 182: 39 vs 31).
@@ -74,6 +75,16 @@ class HybridRenderer : public Renderer {
  private:
   // Step 2: the sampled leaves of this frame, this rank's share splatted into points_.
   void drawPoints(LzbRenderer::Frame& f, const PointParams& pp, int frame, FrameStats& stats);
+  // Step 1 for the far pass to come: where a direct pass may pay (not lazy, a scene of at least
+  // denseTriangles), first a cull up to the median coarse hit depth, kept when it already holds
+  // denseTriangles with nothing sampled (then no plane beyond it costs less than casting every
+  // pixel: the plane and near pass are the whole cull's); else the whole cull. Returns the
+  // depth the cull stopped at, infinity for the whole frustum.
+  double cullForFarPass(LzbRenderer::Frame& f);
+  // kDirectTrianglesPerPixel x the image's pixels.
+  double denseTriangles(const Camera& camera) const;
+  // The culled leaves' triangle entries, or -1 when the cull left a sampled unit out.
+  double exactlyCulledTriangles() const;
   // Step 3's choice (FarPass) for this frame, after the cull: direct rays unless the cull left
   // a sampled unit out (Embree's rays cannot skip it; the walk can).
   bool directRaysPay(const Camera& camera) const;

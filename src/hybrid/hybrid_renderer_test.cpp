@@ -216,6 +216,37 @@ TEST(HybridRenderer, DenseFarSceneIsCastDirectlyAndExactly) {
   expectRankSharesComposite(*scene, cam, HybridParams{}, {"rays_cast"});
 }
 
+// The direct frame's cull stops at the median coarse hit depth (the field holds far more than
+// 16 triangles a pixel in front of it), and the frame is the whole cull's: byte for byte the
+// image of local z-buffering's naive stage (the same cost plane, near pass and Embree rays).
+TEST(HybridRenderer, DirectFrameCullsOnlyToTheMedianHitAndDrawsTheWholeCullsImage) {
+  const Scene* scene = field();
+  if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
+  const Camera cam = testing::pathFrame(*scene, 1, 4, 160, 120);
+  HybridRenderer hybrid(*scene, testing::lzbRenderOptions(), HybridParams{});
+  LzbOptions naive;
+  naive.stage = LzbStage::kNaive;
+  LzbRenderer lzb(*scene, testing::lzbRenderOptions(), naive);
+  FrameStats hs, ls;
+  const Framebuffer image = testing::renderFrame(hybrid, cam, {}, &hs);
+  const Framebuffer whole = testing::renderFrame(lzb, cam, {}, &ls);
+  ASSERT_TRUE(hs.shared.contains("cull_depth"));
+  EXPECT_GT(hs.shared.value("cull_depth", 0.0), cam.nearPlane());
+  EXPECT_LT(hs.shared.value("cull_depth", 0.0), cam.farPlane());
+  EXPECT_LT(hs.shared.value("culled_leaves", 0.0), ls.shared.value("culled_leaves", 0.0));
+  EXPECT_EQ(hs.shared.value("plane_depth", -1.0), ls.shared.value("plane_depth", -2.0));
+  EXPECT_EQ(image.id, whole.id);
+  EXPECT_EQ(image.depth, whole.depth);
+  // Lazy frames cull the whole frustum.
+  HybridParams lazy;
+  lazy.farPass = hybrid::FarPass::kLazy;
+  HybridRenderer lazyHybrid(*scene, testing::lzbRenderOptions(), lazy);
+  FrameStats zs;
+  testing::renderFrame(lazyHybrid, cam, {}, &zs);
+  EXPECT_FALSE(zs.shared.contains("cull_depth"));
+  EXPECT_EQ(zs.shared.value("culled_leaves", -1.0), ls.shared.value("culled_leaves", -2.0));
+}
+
 // A board of 5.4 * 10^8 sub-pixel squares built by 8 levels of nested 2 x 2 instancing: whole
 // instanced subtrees are sampled as units (a few hundred, not a cull through 65,536 placed
 // blocks), every square visible where it should be, and the units' samples split over ranks and
