@@ -16,6 +16,7 @@
 #include "src/cli/render_command.hpp"
 #include "src/cli/sweep_command.hpp"
 #include "src/core/error.hpp"
+#include "src/core/system.hpp"
 
 namespace {
 
@@ -37,6 +38,9 @@ bool wantsNodeServer(int argc, char** argv) {
 
 int main(int argc, char** argv) {
   lzb::preferPassiveOmpWait(argv);
+  // Frames reuse their buffers without faulting them in again (2-rank hybrid, city 1080p:
+  // composite 1.8-2.5 -> 1.2 ms, frame 30-39 -> 26-29 ms).
+  lzb::keepFreedMemory();
   lzb::mpi::Session session(&argc, &argv, wantsNodeServer(argc, argv));
   const lzb::mpi::Group g = lzb::mpi::Group::world();
   const std::string commandLine = joinArgs(argc, argv);

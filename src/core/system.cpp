@@ -1,11 +1,13 @@
 #include "src/core/system.hpp"
 
+#include <malloc.h>
 #include <sched.h>
 #include <sys/resource.h>
 
 #include <unistd.h>
 
 #include <algorithm>
+#include <climits>
 #include <cstdlib>
 #include <fstream>
 #include <string>
@@ -26,6 +28,13 @@ uint64_t peakMemoryBytes() {
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
   return uint64_t(usage.ru_maxrss) * 1024;  // Linux reports kilobytes
+}
+
+bool keepFreedMemory() {
+  // glibc's largest mmap threshold on 64-bit (HEAP_MAX_SIZE / 2): smaller blocks come from the
+  // heap, and a trim threshold of 2 GiB leaves the heap's free top where it is.
+  constexpr int kMmapThreshold = 32 << 20;
+  return mallopt(M_MMAP_THRESHOLD, kMmapThreshold) == 1 && mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1;
 }
 
 void useThreads(int threads) {

@@ -7,6 +7,11 @@ namespace lzb {
 
 int coresOwned();             // CPUs in this process's affinity mask (what mpirun bound it to)
 uint64_t peakMemoryBytes();   // peak resident set size so far
+// Keeps freed heap blocks (up to 32 MiB each) in the process instead of returning them to the
+// kernel: every frame allocates and frees the same buffers, and glibc's default unmaps or trims
+// them, so each frame faults their pages in again. False when the allocator refused (e.g. under
+// AddressSanitizer). Call once at start.
+bool keepFreedMemory();
 // Sets the thread count for OpenMP and (through LP_NUM_THREADS) llvmpipe; call before rendering.
 void useThreads(int threads);
 
