@@ -18,6 +18,33 @@ if {"-h", "--help"} & set(sys.argv[1:]):
     print((__main__.__doc__ or "see the study's README.md").strip())
     sys.exit(0)
 
+
+
+def accept_args(flags=(), valued=(), words=(), followed=()):
+    """Refuses, with status 2 before anything runs (or a CSV is overwritten), every argument that
+    is not one of `flags`, --NAME=VALUE for NAME in `valued`, one of `words`, or the value after
+    one of `followed`. --no-wait (wait_quiet) is always accepted."""
+    args, unknown = sys.argv[1:], []
+    for i, a in enumerate(args):
+        name = a[2:].split("=", 1)[0] if a.startswith("--") and "=" in a else None
+        if (a in flags or a == "--no-wait" or a in words or name in valued or
+                (a in followed and i + 1 < len(args)) or (i > 0 and args[i - 1] in followed)):
+            continue
+        unknown.append(a)
+    if unknown:
+        print(f"{os.path.relpath(sys.argv[0])}: unknown argument(s) {' '.join(unknown)} (see --help)",
+              file=sys.stderr)
+        sys.exit(2)
+
+
+def option(name, default):
+    """The comma-separated values of --NAME=a,b (default when absent)."""
+    for a in sys.argv[1:]:
+        if a.startswith(f"--{name}="):
+            return a.split("=", 1)[1].split(",")
+    return default
+
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 LZB = os.path.join(os.environ.get("LZB_BUILD", os.path.join(ROOT, "build")), "lzb")
 DATA = os.path.join(ROOT, "build", "data")

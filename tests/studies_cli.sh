@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The benchmark studies (runs/*/*.py) answer -h / --help with their usage and leave their CSVs and
-# plots alone; the strict ones refuse an unknown argument with status 2 before running anything.
+# plots alone, and refuse an unknown argument with status 2 before running anything.
 # usage: studies_cli.sh REPOSITORY_ROOT
 set -euo pipefail
 cd "$1"
@@ -12,7 +12,10 @@ for study in runs/*/run.py runs/lzb/far_rays.py runs/speedup/tiles.py; do
     grep -qi usage <<<"$out" || { echo "$study $flag: no usage in: $out" >&2; exit 1; }
   done
 done
-for bad in "runs/rzb/run.py bogus_study" "runs/rzb/run.py --qiuck" "runs/exact/run.py --qiuck"; do
+bad_args=("runs/rzb/run.py bogus_study" "runs/lzb/run.py bogus_study" "runs/peers/run.py --scene=city"
+          "runs/sampletree/run.py --only")
+for study in runs/*/run.py runs/lzb/far_rays.py runs/speedup/tiles.py; do bad_args+=("$study --qiuck"); done
+for bad in "${bad_args[@]}"; do
   set +e
   err=$(timeout 20 python3 $bad 2>&1 >/dev/null)
   rc=$?

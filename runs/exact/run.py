@@ -9,12 +9,10 @@ median frame time is reported. Methods alternate per scene so machine drift hits
 import csv, json, os, statistics, subprocess, sys, tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-import common  # noqa: E402,F401  (-h / --help prints this docstring instead of running)
+import common  # noqa: E402  (-h / --help prints this docstring instead of running)
 
-# A mistyped option is refused before anything runs (or the CSV is overwritten).
-if set(sys.argv[1:]) - {"--quick", "--plot-only"}:
-    print(f"runs/exact/run.py: unknown argument(s) {' '.join(sys.argv[1:])} (see --help)", file=sys.stderr)
-    sys.exit(2)
+# A mistyped option is refused before anything runs (or a CSV is overwritten).
+common.accept_args(flags=("--quick", "--plot-only"))
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 LZB = os.path.join(ROOT, "build", "lzb")

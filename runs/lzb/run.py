@@ -37,6 +37,10 @@ import csv, json, os, statistics, subprocess, sys, tempfile
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402  (idle_fraction, gnuplot, datafile)
 
+# A mistyped option is refused before anything runs (or a CSV is overwritten).
+common.accept_args(flags=("--quick", "--plot-only"), valued=("variants",),
+                   words=("paper", "occluders", "size", "reuse"))
+
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 HERE = os.path.join(ROOT, "runs", "lzb")
 LZB = os.environ.get("LZB_BIN", os.path.join(ROOT, "build-lzb", "lzb"))

@@ -28,6 +28,9 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402
 
+# A mistyped option is refused before anything runs (or a CSV is overwritten).
+common.accept_args(flags=("--quick", "--plot-only", "--keep"), valued=("scenes", "methods"))
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 QUICK = "--quick" in sys.argv
 ARMADILLO = os.path.join(common.DATA, "armadillo.off")
@@ -51,13 +54,6 @@ PVBATCH_MAX_TRIANGLES = 20_000_000
 PEERS = ["pvbatch_1rank", "pvbatch_2ranks"]
 # lzb culls per leaf and refuses 10^12-triangle instancing; no z-buffer draws it.
 CANNOT = {("chessboard", "lzb"), ("chessboard", "zbuffer")}
-
-
-def option(name, default):
-    for a in sys.argv[1:]:
-        if a.startswith(f"--{name}="):
-            return a.split("=", 1)[1].split(",")
-    return default
 
 
 def limits():
@@ -97,12 +93,12 @@ def run():
     kept_rows, kept_commands = (common.read_kept(os.path.join(HERE, "peers.csv"))
                                 if "--keep" in sys.argv else ([], []))
     measured = [dict(limits(), when="start")]
-    for name in option("scenes", list(SCENES)):
+    for name in common.option("scenes", list(SCENES)):
         scene, w, h, frames, zframes = SCENES[name]
         if QUICK:
             frames, zframes = min(frames, 3), min(zframes, 2)
         for label, extra in METHODS:
-            if label not in option("methods", [m for m, _ in METHODS]):
+            if label not in common.option("methods", [m for m, _ in METHODS]):
                 continue
             method = label.split("_")[0]
             n = zframes if method == "zbuffer" else frames
@@ -139,7 +135,7 @@ def run():
                     row["samples_per_s"] = counts("samples_drawn") / splat
             rows.append(row)
             kept_rows = [r for r in kept_rows if (r["scene"], r["method"]) != (name, label)]
-            if method == "raycast" and "pvbatch" in option("methods", ["pvbatch"]):
+            if method == "raycast" and "pvbatch" in common.option("methods", ["pvbatch"]):
                 for pv in pvbatch(scene, rep, w, h, commands):
                     rows.append({"scene": name, "triangles": row["triangles"], "width": w, "height": h, **pv})
                     print(f"{name} {pv['method']}: {pv['median_frame_s'] * 1e3:9.1f} ms", flush=True)

@@ -31,7 +31,7 @@ under flock, one measurement at a time.
 import csv, json, os, statistics, subprocess, sys, tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-import common  # noqa: E402,F401  (-h / --help prints this docstring instead of running)
+import common  # noqa: E402  (-h / --help prints this docstring instead of running)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 HERE = os.path.join(ROOT, "runs", "rzb")
@@ -46,10 +46,7 @@ STUDIES = ["sensitivity", "vs_zbuffer", "throughput", "table1", "walkthrough", "
            "fallback", "forest_walk"]
 studies = [a for a in sys.argv[1:] if not a.startswith("--")] or STUDIES[:7]
 # A mistyped study or option is refused before anything runs (or any CSV is overwritten).
-unknown = [a for a in sys.argv[1:] if a not in STUDIES + ["--quick", "--plot-only"]]
-if unknown:
-    print(f"runs/rzb/run.py: unknown argument(s) {' '.join(unknown)} (see --help)", file=sys.stderr)
-    sys.exit(2)
+common.accept_args(flags=("--quick", "--plot-only"), words=STUDIES)
 CMD = "python3 runs/rzb/run.py " + " ".join(sys.argv[1:])
 
 

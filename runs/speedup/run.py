@@ -20,6 +20,10 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402
 
+# A mistyped option is refused before anything runs (or a CSV is overwritten).
+common.accept_args(flags=("--quick", "--plot-only", "--keep"),
+                   valued=("scenes", "methods", "configs"))
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 QUICK = "--quick" in sys.argv
 # Frames a run renders (the first is dropped): the city's frames are short, and its medians
@@ -40,13 +44,6 @@ SIZES = [(640, 480)] if QUICK else [(640, 480), (1920, 1080)]
 # every rank: cull, plane, near pass, unfinished mask, OOR projection, combine).
 SPLIT_STAGES = ("pvl_find", "pvl_render", "points")
 CONFIGS = [(1, 1), (1, 2), (2, 1)] if QUICK else [(1, 1), (1, 2), (2, 1), (3, 1), (4, 1)]
-
-
-def option(name, default):
-    for a in sys.argv[1:]:
-        if a.startswith(f"--{name}="):
-            return a.split("=", 1)[1].split(",")
-    return default
 
 
 def breakdown(frames):
@@ -77,9 +74,9 @@ def save(rows, stage_rows, commands):
 
 
 def run():
-    methods = option("methods", METHODS)
-    scenes = option("scenes", list(SCENES))
-    configs = [tuple(int(v) for v in c.split("x")) for c in option("configs", [])] or CONFIGS
+    methods = common.option("methods", METHODS)
+    scenes = common.option("scenes", list(SCENES))
+    configs = [tuple(int(v) for v in c.split("x")) for c in common.option("configs", [])] or CONFIGS
     rows, stage_rows, commands = [], [], []
     if "--keep" in sys.argv:
         rows, commands = common.read_kept(os.path.join(HERE, "speedup.csv"))

@@ -25,6 +25,9 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402
 
+# A mistyped option is refused before anything runs (or a CSV is overwritten).
+common.accept_args(flags=("--quick", "--plot-only"))
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 QUICK = "--quick" in sys.argv
 NAME = "quick" if QUICK else "sqrt5"

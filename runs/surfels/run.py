@@ -24,6 +24,9 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402
 
+# A mistyped option is refused before anything runs (or a CSV is overwritten).
+common.accept_args(flags=("--quick", "--plot-only"), valued=("scenes", "configs"))
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 QUICK = "--quick" in sys.argv
 NAME = "quick" if QUICK else "surfels"
@@ -60,13 +63,6 @@ FIELDS = ["scene", "triangles", "width", "height", "config", "frames", "median_f
           "collector_bytes_per_surfel", "peak_memory_bytes"]
 
 
-def option(name, default):
-    for a in sys.argv[1:]:
-        if a.startswith(f"--{name}="):
-            return a.split("=", 1)[1].split(",")
-    return default
-
-
 def histogram(counts):
     """{"128": 5, "256": 6} as '128:5 256:6' (one CSV field)."""
     return " ".join(f"{k}:{int(v)}" for k, v in sorted(counts.items(), key=lambda kv: int(kv[0])))
@@ -101,11 +97,11 @@ def row_of(name, scene, label, n, reference, rep):
 
 def run():
     rows, commands = [], []
-    for name in option("scenes", list(SCENES)):
+    for name in common.option("scenes", list(SCENES)):
         scene, frames, zframes = SCENES[name]
         if QUICK:
             frames, zframes = 2, 2
-        for label in option("configs", list(CONFIGS)):
+        for label in common.option("configs", list(CONFIGS)):
             method_args, reference = CONFIGS[label]
             n = zframes if label == "zbuffer" else frames
             args = [*method_args, "--frames", str(n), "--width", str(SIZE), "--height", str(SIZE),

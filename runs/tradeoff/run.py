@@ -34,6 +34,9 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402
 
+# A mistyped option is refused before anything runs (or a CSV is overwritten).
+common.accept_args(flags=("--quick", "--plot-only", "--keep"), valued=("scenes", "methods"))
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 QUICK = "--quick" in sys.argv
 PREFIX = "quick_" if QUICK else ""
@@ -74,13 +77,6 @@ EXACT = {"raycast", "zbuffer"}
 FIELDS = ["scene", "method", "config", "reference", "frames", "median_frame_s", "setup_s",
           "correct_rate_covered_min", "correct_rate_covered_median", "exact_id_rate_covered_median",
           "psnr_aa_median", "error", "pareto"]
-
-
-def option(name, default):
-    for a in sys.argv[1:]:
-        if a.startswith(f"--{name}="):
-            return a.split("=", 1)[1].split(",")
-    return default
 
 
 def registered_methods():
@@ -206,9 +202,9 @@ plot {", ".join(plots)}
 
 
 def main():
-    scenes = option("scenes", list(SCENES))
+    scenes = common.option("scenes", list(SCENES))
     if "--plot-only" not in sys.argv:
-        methods = option("methods", registered_methods())
+        methods = common.option("methods", registered_methods())
         for m in methods:
             if m not in SWEEPS:
                 print(f"warning: no sweep defined for method {m}; add it to SWEEPS", flush=True)
