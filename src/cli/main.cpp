@@ -39,7 +39,7 @@ bool wantsNodeServer(int argc, char** argv) {
 int main(int argc, char** argv) {
   lzb::preferPassiveOmpWait(argv);
   // Frames reuse their buffers without faulting them in again (2-rank hybrid, city 1080p:
-  // composite 1.8-2.5 -> 1.2 ms, frame 30-39 -> 26-29 ms).
+  // composite 1.7-1.9 -> 1.2 ms, runs/composite/heap_ab.csv).
   lzb::keepFreedMemory();
   lzb::mpi::Session session(&argc, &argv, wantsNodeServer(argc, argv));
   const lzb::mpi::Group g = lzb::mpi::Group::world();
