@@ -120,7 +120,7 @@ bool PartitionPlane::stillValid(const Camera& c) const {
 
 PlaneDecision PartitionPlane::place(const EmbreeScene& embree, const Camera& camera,
                                     std::span<const LeafLoad> loads, int threads,
-                                    bool directRays) {
+                                    bool directRays, const CoarseHits* cast) {
   if (!options_.dynamicPlane()) {
     PlaneDecision d;
     d.depth =
@@ -135,7 +135,8 @@ PlaneDecision PartitionPlane::place(const EmbreeScene& embree, const Camera& cam
     return d;
   }
   std::vector<double> hits;
-  PlaneDecision d = coarseRayCast(embree, camera, options_.planeGrid, &hits, threads);
+  PlaneDecision d = cast ? cast->mean : coarseRayCast(embree, camera, options_.planeGrid, &hits, threads);
+  if (cast) hits = cast->depths;
   if (options_.costPlane)
     d.depth = costPlane(std::move(hits), d.coarseRays, camera, loads,
                         directRays || !options_.usesPvl() ? kNaiveRayCost : kRayCost, threads);

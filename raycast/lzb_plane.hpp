@@ -45,6 +45,13 @@ struct PlaneDecision {
   uint64_t coarseRays = 0, coarseHits = 0;  // this frame's (0 when reused or static)
 };
 
+// The coarse grid's rays of one camera, cast once before the plane (a composing method that
+// needs them first): the mean-depth decision and every hit depth.
+struct CoarseHits {
+  PlaneDecision mean;
+  std::vector<double> depths;
+};
+
 class PartitionPlane {
  public:
   static constexpr double kReuseMove = 0.05;
@@ -62,10 +69,11 @@ class PartitionPlane {
   // This frame's plane. embree: the whole scene (coarse rays), unused for a static plane;
   // loads: the culled leaves (used by the cost plane only); the coarse rays go on `threads`;
   // directRays: the far pass is Embree's hits without a PVL (as the naive stage's), whose
-  // pixels the cost plane weighs at kNaiveRayCost.
+  // pixels the cost plane weighs at kNaiveRayCost; cast: this camera's coarse rays when already
+  // cast (else place() casts them when it computes a plane).
   PlaneDecision place(const EmbreeScene& embree, const Camera& camera,
                       std::span<const LeafLoad> loads = {}, int threads = 1,
-                      bool directRays = false);
+                      bool directRays = false, const CoarseHits* cast = nullptr);
   // Whether place() for this camera reads the leaves' loads (a cost plane to compute, not reused).
   bool needsLoads(const Camera& camera) const {
     return options_.dynamicPlane() && options_.costPlane && !stillValid(camera);

@@ -165,6 +165,30 @@ TEST(PartitionPlane, CostModeIsDynamicAndReusable) {
   EXPECT_TRUE(plane.place(embree, headOn(4.0), loads).reused);
 }
 
+TEST(PartitionPlane, TakesCoarseRaysAlreadyCastForTheSameCamera) {
+  const Scene scene = testing::quadScene();
+  const EmbreeScene embree(scene, {});
+  for (const bool cost : {false, true}) {
+    LzbOptions o;
+    o.costPlane = cost;
+    o.planeReuse = 0;
+    const std::vector<LeafLoad> loads = {{3.9, 2}};
+    CoarseHits cast;
+    cast.mean = PartitionPlane::coarseRayCast(embree, headOn(4.0), o.planeGrid, &cast.depths);
+    PartitionPlane own(o), given(o);
+    const PlaneDecision a = own.place(embree, headOn(4.0), loads);
+    const PlaneDecision b = given.place(embree, headOn(4.0), loads, 1, false, &cast);
+    EXPECT_EQ(a.depth, b.depth);
+    EXPECT_EQ(a.coarseRays, b.coarseRays);
+    EXPECT_EQ(a.coarseHits, b.coarseHits);
+    // The given rays are the ones used: hits moved to depth 7 move the plane there.
+    for (double& d : cast.depths) d = 7.0;
+    cast.mean.depth = 7.0;
+    EXPECT_NEAR(given.place(embree, headOn(4.0), loads, 1, false, &cast).depth, 7.0, 1e-5)
+        << (cost ? "cost" : "mean") << " plane";
+  }
+}
+
 TEST(TriangleSet, ListsEachTriangleOnceInAscendingOrder) {
   TriangleSet set;
   set.reset(1000);

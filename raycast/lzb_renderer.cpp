@@ -150,10 +150,13 @@ void LzbRenderer::cull(Frame& f, double farDepth) {
   cullScene(*accel_, *f.camera, culled_, options_.threads, f.leafFilter, farDepth);
 }
 
-double LzbRenderer::medianCoarseHit(const Camera& camera) const {
-  std::vector<double> hits;
-  PartitionPlane::coarseRayCast(*embree_, camera, lzb_.planeGrid, &hits, options_.threads);
-  if (hits.empty()) return camera.farPlane();
+double LzbRenderer::medianCoarseHit(Frame& f) const {
+  const Camera& camera = *f.camera;
+  CoarseHits& cast = f.coarse.emplace();
+  cast.mean = PartitionPlane::coarseRayCast(*embree_, camera, lzb_.planeGrid, &cast.depths,
+                                            options_.threads);
+  if (cast.depths.empty()) return camera.farPlane();
+  std::vector<double> hits = cast.depths;  // reordered below; the plane gets them as cast
   const auto mid = hits.begin() + std::ptrdiff_t(hits.size() / 2);
   std::nth_element(hits.begin(), mid, hits.end());
   return *mid;
@@ -174,7 +177,8 @@ void LzbRenderer::placePlane(Frame& f) {
     }
     loads = loads_;
   }
-  last_.plane = plane_.place(*embree_, *f.camera, loads, options_.threads, directRays(f));
+  last_.plane = plane_.place(*embree_, *f.camera, loads, options_.threads, directRays(f),
+                             f.coarse ? &*f.coarse : nullptr);
   f.zClip = last_.plane.depth;
 }
 

@@ -20,6 +20,7 @@
 // by (depth, id) gives the 1-rank image.
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,12 +79,14 @@ class LzbRenderer : public Renderer {
     // Set by a composing method (hybrid) before the plane: the far pass is each unfinished
     // pixel's Embree hit (the naive stage's rays), with no PVL, whatever --lzb-stage says.
     bool directRays = false;
+    std::optional<CoarseHits> coarse;  // the plane's coarse rays, when cast before it
   };
   // 1. Hierarchical view-frustum culling of the octrees (up to view depth farDepth when it is
   // nearer than the camera's far plane: a composing method's partial cull).
   void cull(Frame& f, double farDepth = std::numeric_limits<double>::infinity());
-  // The median view depth of the plane's coarse rays' hits (camera far without any hit).
-  double medianCoarseHit(const Camera& camera) const;
+  // The median view depth of the plane's coarse rays' hits (camera far without any hit); the
+  // rays are kept in f.coarse for the plane.
+  double medianCoarseHit(Frame& f) const;
   // 2. The partition plane z_clip.
   void placePlane(Frame& f);
   // 3. The near scene by z-buffer, clipped at the plane, straight into fb.

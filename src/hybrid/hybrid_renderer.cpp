@@ -104,8 +104,9 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
                                             pp.thresholdPx);
   f.leafFilter = rule_.get();  // the cull leaves wholly sampled nodes out
   Stopwatch clock;
-  const double cullDepth = cullForFarPass(f);
-  f.directRays = directRaysPay(camera);
+  double culledTriangles = -1.0;
+  const double cullDepth = cullForFarPass(f, &culledTriangles);
+  f.directRays = directRaysPay(camera, culledTriangles);
   stats.addStage("cull", clock.lap());
   lzb_.placePlane(f);
   f.zClip = std::min(f.zClip, cullDepth);  // a reused plane may lie beyond a partial cull
@@ -138,17 +139,20 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
   if (cullDepth < camera.farPlane()) stats.setShared("cull_depth", cullDepth);
 }
 
-double HybridRenderer::cullForFarPass(LzbRenderer::Frame& f) {
+double HybridRenderer::cullForFarPass(LzbRenderer::Frame& f, double* triangles) {
   const Camera& camera = *f.camera;
   const double dense = denseTriangles(camera);
-  if (params_.farPass != FarPass::kLazy && double(scene_.expandedTriangles()) >= dense) {
-    const double depth = lzb_.medianCoarseHit(camera);
+  const bool mayGoDirect = params_.farPass != FarPass::kLazy;
+  if (mayGoDirect && double(scene_.expandedTriangles()) >= dense) {
+    const double depth = lzb_.medianCoarseHit(f);
     if (depth < camera.farPlane()) {
       lzb_.cull(f, depth);
-      if (exactlyCulledTriangles() >= dense) return depth;
+      *triangles = exactlyCulledTriangles();
+      if (*triangles >= dense) return depth;
     }
   }
   lzb_.cull(f);
+  *triangles = mayGoDirect ? exactlyCulledTriangles() : -1.0;
   return std::numeric_limits<double>::infinity();
 }
 
@@ -201,11 +205,10 @@ double HybridRenderer::exactlyCulledTriangles() const {
   return double(triangles);
 }
 
-bool HybridRenderer::directRaysPay(const Camera& camera) const {
+bool HybridRenderer::directRaysPay(const Camera& camera, double culledTriangles) const {
   if (params_.farPass == FarPass::kLazy) return false;
-  const double triangles = exactlyCulledTriangles();
-  return triangles >= 0.0 &&
-         (params_.farPass == FarPass::kDirect || triangles >= denseTriangles(camera));
+  return culledTriangles >= 0.0 &&
+         (params_.farPass == FarPass::kDirect || culledTriangles >= denseTriangles(camera));
 }
 
 // Which pass finished each pixel of this rank's tiles: the near pass (shared), the samples or

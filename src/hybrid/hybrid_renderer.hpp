@@ -79,15 +79,16 @@ class HybridRenderer : public Renderer {
   // denseTriangles), first a cull up to the median coarse hit depth, kept when it already holds
   // denseTriangles with nothing sampled (then no plane beyond it costs less than casting every
   // pixel: the plane and near pass are the whole cull's); else the whole cull. Returns the
-  // depth the cull stopped at, infinity for the whole frustum.
-  double cullForFarPass(LzbRenderer::Frame& f);
+  // depth the cull stopped at, infinity for the whole frustum; *triangles: the kept cull's
+  // exactlyCulledTriangles (-1 when not counted: a lazy far pass).
+  double cullForFarPass(LzbRenderer::Frame& f, double* triangles);
   // kDirectTrianglesPerPixel x the image's pixels.
   double denseTriangles(const Camera& camera) const;
   // The culled leaves' triangle entries, or -1 when the cull left a sampled unit out.
   double exactlyCulledTriangles() const;
-  // Step 3's choice (FarPass) for this frame, after the cull: direct rays unless the cull left
-  // a sampled unit out (Embree's rays cannot skip it; the walk can).
-  bool directRaysPay(const Camera& camera) const;
+  // Step 3's choice (FarPass) for this frame from the cull's exactlyCulledTriangles: direct rays
+  // unless the cull left a sampled unit out (Embree's rays cannot skip it; the walk can).
+  bool directRaysPay(const Camera& camera, double culledTriangles) const;
   void countPixels(const LzbRenderer::Frame& f, const Framebuffer& fb, FrameStats& stats) const;
 
   const Scene& scene_;
