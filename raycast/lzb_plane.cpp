@@ -135,8 +135,9 @@ PlaneDecision PartitionPlane::place(const EmbreeScene& embree, const Camera& cam
     return d;
   }
   std::vector<double> hits;
-  PlaneDecision d = cast ? cast->mean : coarseRayCast(embree, camera, options_.planeGrid, &hits, threads);
-  if (cast) hits = cast->depths;
+  PlaneDecision d;
+  if (cast) d = cast->mean, hits = cast->depths;
+  else d = coarseRayCast(embree, camera, options_.planeGrid, &hits, threads);
   if (options_.costPlane)
     d.depth = costPlane(std::move(hits), d.coarseRays, camera, loads,
                         directRays || !options_.usesPvl() ? kNaiveRayCost : kRayCost, threads);

@@ -34,7 +34,8 @@ bool keepFreedMemory() {
   // glibc's largest mmap threshold on 64-bit (HEAP_MAX_SIZE / 2): smaller blocks come from the
   // heap, and a trim threshold of 2 GiB leaves the heap's free top where it is.
   constexpr int kMmapThreshold = 32 << 20;
-  return mallopt(M_MMAP_THRESHOLD, kMmapThreshold) == 1 && mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1;
+  return mallopt(M_MMAP_THRESHOLD, kMmapThreshold) == 1 &&
+         mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1;
 }
 
 void useThreads(int threads) {
