@@ -19,7 +19,6 @@ if {"-h", "--help"} & set(sys.argv[1:]):
     sys.exit(0)
 
 
-
 def accept_args(flags=(), valued=(), words=(), followed=()):
     """Refuses, with status 2 before anything runs (or a CSV is overwritten), every argument that
     is not one of `flags`, --NAME=VALUE for NAME in `valued`, one of `words`, or the value after
