@@ -6,7 +6,8 @@ set -euo pipefail
 cd "$1"
 stamp() { find runs -name '*.csv' -o -name '*.png' | sort | xargs stat -c '%n %Y %s'; }
 before=$(stamp)
-for study in runs/*/run.py runs/lzb/far_rays.py runs/speedup/tiles.py; do
+studies=(runs/*/run.py runs/lzb/far_rays.py runs/speedup/tiles.py)
+for study in "${studies[@]}"; do
   for flag in -h --help; do
     out=$(timeout 20 python3 "$study" "$flag")
     grep -qi usage <<<"$out" || { echo "$study $flag: no usage in: $out" >&2; exit 1; }
@@ -14,7 +15,7 @@ for study in runs/*/run.py runs/lzb/far_rays.py runs/speedup/tiles.py; do
 done
 bad_args=("runs/rzb/run.py bogus_study" "runs/lzb/run.py bogus_study" "runs/peers/run.py --scene=city"
           "runs/sampletree/run.py --only")
-for study in runs/*/run.py runs/lzb/far_rays.py runs/speedup/tiles.py; do bad_args+=("$study --qiuck"); done
+for study in "${studies[@]}"; do bad_args+=("$study --qiuck"); done
 for bad in "${bad_args[@]}"; do
   set +e
   err=$(timeout 20 python3 $bad 2>&1 >/dev/null)

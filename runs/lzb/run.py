@@ -37,9 +37,9 @@ import csv, json, os, statistics, subprocess, sys, tempfile
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402  (idle_fraction, gnuplot, datafile)
 
-# A mistyped option is refused before anything runs (or a CSV is overwritten).
-common.accept_args(flags=("--quick", "--plot-only"), valued=("variants",),
-                   words=("paper", "occluders", "size", "reuse"))
+STUDIES = ["paper", "occluders", "size", "reuse"]
+# A mistyped option or study is refused before anything runs (or a CSV is overwritten).
+common.accept_args(flags=("--quick", "--plot-only"), valued=("variants",), words=STUDIES)
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 HERE = os.path.join(ROOT, "runs", "lzb")
@@ -48,8 +48,7 @@ DATA = os.environ.get("LZB_DATA", os.path.join(ROOT, "build-lzb", "data"))
 THREADS = 2
 QUICK = "--quick" in sys.argv
 PLOT_ONLY = "--plot-only" in sys.argv
-WANT = [a for a in sys.argv[1:] if not a.startswith("--")] or ["paper", "occluders", "size",
-                                                                  "reuse"]
+WANT = [a for a in sys.argv[1:] if not a.startswith("--")] or STUDIES
 COMMAND = "python3 runs/lzb/run.py " + " ".join(sys.argv[1:])
 
 STAGES = ["naive", "lazy", "selective", "oor", "final"]
