@@ -6,7 +6,7 @@
 # g++'s own runtimes, which build-essential brings.
 set -euo pipefail
 packages=(
-  build-essential cmake pkg-config git
+  build-essential cmake pkg-config git ccache
   libopenmpi-dev openmpi-bin
   libglm-dev libembree-dev libosmesa6-dev libopenimageio-dev openimageio-tools
   libassimp-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev librandom123-dev

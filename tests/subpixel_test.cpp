@@ -1,5 +1,5 @@
-// Sub-pixel geometry: the ray witness (raycast/ray_witness.hpp) against the 17-sample rule, and a
-// control that proves the witnessed metric can still fail.
+// Sub-pixel geometry: the ray witness (raycast/exact/ray_witness.hpp) against the 17-sample rule,
+// and a control that proves the witnessed metric can still fail.
 //
 // On the instanced armadillo field (about 100 triangles of 0.002 px^2 per pixel at 320x240) most
 // triangles visible in a pixel contain none of the reference's 17 samples, so the 17-sample rule
@@ -15,8 +15,8 @@
 #include <memory>
 #include <string>
 
-#include "raycast/ray_witness.hpp"
-#include "raycast/raycast_renderer.hpp"
+#include "raycast/exact/ray_witness.hpp"
+#include "raycast/exact/raycast_renderer.hpp"
 #include "src/image/metrics.hpp"
 #include "src/image/test_reference.hpp"
 #include "src/rzb/rzb_renderer.hpp"

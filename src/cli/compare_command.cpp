@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <string>
 
-#include "raycast/ray_witness.hpp"
+#include "raycast/exact/ray_witness.hpp"
 #include "src/core/error.hpp"
 #include "src/core/system.hpp"
 #include "src/image/compare.hpp"

@@ -1,12 +1,12 @@
 #pragma once
 // What `lzb render --reference` and `lzb sweep` judge frames against: an exact method rendered at
 // the pixel centres and at 4x4 sub-samples per pixel (src/image/reference.hpp), and at the root
-// the ray witness (raycast/ray_witness.hpp).
+// the ray witness (raycast/exact/ray_witness.hpp).
 #include <memory>
 #include <string>
 
 #include "mpi/frame_driver.hpp"
-#include "raycast/ray_witness.hpp"
+#include "raycast/exact/ray_witness.hpp"
 #include "src/core/renderer.hpp"
 #include "src/image/metrics.hpp"
 #include "src/image/reference.hpp"

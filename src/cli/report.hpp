@@ -3,12 +3,11 @@
 // with a reference, accuracy. Built at the root rank.
 #include <cstdio>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "mpi/group.hpp"
-#include "raycast/ray_witness.hpp"
+#include "raycast/exact/ray_witness.hpp"
 #include "src/cli/render_command.hpp"
 #include "src/core/renderer.hpp"
 #include "src/core/scene_outline.hpp"

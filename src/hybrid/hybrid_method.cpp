@@ -2,8 +2,8 @@
 
 #include <string>
 
+#include "raycast/lzb/lzb_method.hpp"
 #include "src/core/error.hpp"
-#include "raycast/lzb_method.hpp"
 #include "src/hybrid/hybrid_renderer.hpp"
 
 namespace lzb {
@@ -34,7 +34,7 @@ class HybridMethod : public Method {
                     "lzb, hybrid: partition plane: auto (coarse ray casting, mean depth), cost "
                     "(coarse ray casting, cost model) or a fraction F in (0, 1) of the frustum "
                     "depth");
-    addTileDealOption(c, tileDeal_);
+    localz::addTileDealOption(c, tileDeal_);
     c.add_option("--far-pass", farPass_,
                  "hybrid: the exact far scene by lazy ray casting -> PVL -> z-buffer (lazy), by "
                  "each unfinished pixel's Embree hit (direct), or auto: direct from 16 culled "
@@ -53,7 +53,7 @@ class HybridMethod : public Method {
     require(backfaces_ == "drop" || backfaces_ == "keep", "--backfaces",
             "expected drop or keep, got '" + backfaces_ + "'");
     params_.dropBackfaces = backfaces_ == "drop";
-    parsePlane(plane_, "--plane", params_.lzb);
+    localz::parsePlane(plane_, "--plane", params_.lzb);
     params_.lzb.tileDeal = parseTileDeal(tileDeal_, "--tile-deal");
     params_.farPass = hybrid::parseFarPass(farPass_, "--far-pass");
     params_.validate();

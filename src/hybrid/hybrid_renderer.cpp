@@ -16,7 +16,7 @@ void HybridParams::validate() const {
   require(splat >= 1 && splat <= 64, "--splat", "must be in [1, 64]");
   require(fallbackPx >= 0.0 && std::isfinite(fallbackPx), "--fallback",
           "must be 'auto' or a pixel area > 0 for the hybrid");
-  lzb::validate(lzb);
+  localz::validate(lzb);
 }
 
 FarPass parseFarPass(const std::string& text, const std::string& field) {
@@ -54,7 +54,7 @@ nlohmann::json HybridParams::toJson() const {
 
 namespace {
 
-LeafAreas timedAreas(const LzbAccel& accel, double& seconds) {
+LeafAreas timedAreas(const localz::LzbAccel& accel, double& seconds) {
   Stopwatch clock;
   LeafAreas areas(accel);
   seconds = clock.seconds();
@@ -96,7 +96,7 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
                             Framebuffer& fb, FrameStats& stats) {
   if (fb.width != camera.width() || fb.height != camera.height())
     throw std::invalid_argument("hybrid: framebuffer and camera sizes differ");
-  LzbRenderer::Frame f;
+  localz::LzbRenderer::Frame f;
   f.camera = &camera;
   f.share = share;
   const PointParams pp = params_.pointParams(camera.width(), camera.height());
@@ -139,7 +139,7 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
   if (cullDepth < camera.farPlane()) stats.setShared("cull_depth", cullDepth);
 }
 
-double HybridRenderer::cullForFarPass(LzbRenderer::Frame& f, double* triangles) {
+double HybridRenderer::cullForFarPass(localz::LzbRenderer::Frame& f, double* triangles) {
   const Camera& camera = *f.camera;
   const double dense = denseTriangles(camera);
   const bool mayGoDirect = params_.farPass != FarPass::kLazy;
@@ -156,7 +156,7 @@ double HybridRenderer::cullForFarPass(LzbRenderer::Frame& f, double* triangles) 
   return std::numeric_limits<double>::infinity();
 }
 
-void HybridRenderer::drawPoints(LzbRenderer::Frame& f, const PointParams& pp, int frame,
+void HybridRenderer::drawPoints(localz::LzbRenderer::Frame& f, const PointParams& pp, int frame,
                                 FrameStats& stats) {
   const Camera& camera = *f.camera;
   const SampleStream stream(options_.seed, uint64_t(frame));
@@ -198,7 +198,7 @@ double HybridRenderer::denseTriangles(const Camera& camera) const {
 
 double HybridRenderer::exactlyCulledTriangles() const {
   uint64_t triangles = 0;
-  for (const CullPath& p : lzb_.culled().paths) {
+  for (const localz::CullPath& p : lzb_.culled().paths) {
     if (p.drawnElsewhere || p.subtree) return -1.0;
     triangles += p.leafTriangles;
   }
@@ -214,7 +214,7 @@ bool HybridRenderer::directRaysPay(const Camera& camera, double culledTriangles)
 // Which pass finished each pixel of this rank's tiles: the near pass (shared), the samples or
 // the PVL (or the direct rays), counted before compositing with the other ranks, whose samples
 // may still win.
-void HybridRenderer::countPixels(const LzbRenderer::Frame& f, const Framebuffer& fb,
+void HybridRenderer::countPixels(const localz::LzbRenderer::Frame& f, const Framebuffer& fb,
                                  FrameStats& stats) const {
   const ScreenTiles tiles(fb.width, fb.height);
   const std::vector<uint8_t>& open = lzb_.unfinishedMask();

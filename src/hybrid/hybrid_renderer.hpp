@@ -1,6 +1,6 @@
 #pragma once
 // --method hybrid: local z-buffering and the randomized z-buffer in one frame, composed from
-// their stages (raycast/lzb_renderer.hpp and the point pass of leaf_points.hpp):
+// their stages (raycast/lzb/lzb_renderer.hpp and the point pass of leaf_points.hpp):
 //   1. cull, partition plane, near scene by the native z-buffer clipped at the plane, unfinished
 //      pixels (local z-buffering's steps 1-4);
 //   2. behind the plane, the octree leaves whose triangles project below the fallback threshold
@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "raycast/lzb_renderer.hpp"
+#include "raycast/lzb/lzb_renderer.hpp"
 #include "src/core/depth_key.hpp"
 #include "src/core/renderer.hpp"
 #include "src/hybrid/leaf_areas.hpp"
@@ -52,7 +52,7 @@ struct HybridParams {
   static constexpr double kDirectTrianglesPerPixel = 16.0;
   // The local z-buffering stages (final stage, native z-buffers); its far rays walk the octrees
   // in frames where the point pass takes leaves (only the walk skips them), else are Embree's.
-  LzbOptions lzb;
+  localz::LzbOptions lzb;
 
   // Throws InputError naming the option for out-of-range values.
   void validate() const;
@@ -70,18 +70,19 @@ class HybridRenderer : public Renderer {
               FrameStats& stats) override;
   FrameStats setupStats() const override;
 
-  const LzbRenderer& lzb() const { return lzb_; }
+  const localz::LzbRenderer& lzb() const { return lzb_; }
 
  private:
   // Step 2: the sampled leaves of this frame, this rank's share splatted into points_.
-  void drawPoints(LzbRenderer::Frame& f, const PointParams& pp, int frame, FrameStats& stats);
+  void drawPoints(localz::LzbRenderer::Frame& f, const PointParams& pp, int frame,
+                  FrameStats& stats);
   // Step 1 for the far pass to come: where a direct pass may pay (not lazy, a scene of at least
   // denseTriangles), first a cull up to the median coarse hit depth, kept when it already holds
   // denseTriangles with nothing sampled (then no plane beyond it costs less than casting every
   // pixel: the plane and near pass are the whole cull's); else the whole cull. Returns the
   // depth the cull stopped at, infinity for the whole frustum; *triangles: the kept cull's
   // exactlyCulledTriangles (-1 when not counted: a lazy far pass).
-  double cullForFarPass(LzbRenderer::Frame& f, double* triangles);
+  double cullForFarPass(localz::LzbRenderer::Frame& f, double* triangles);
   // kDirectTrianglesPerPixel x the image's pixels.
   double denseTriangles(const Camera& camera) const;
   // The culled leaves' triangle entries, or -1 when the cull left a sampled unit out.
@@ -89,12 +90,13 @@ class HybridRenderer : public Renderer {
   // Step 3's choice (FarPass) for this frame from the cull's exactlyCulledTriangles: direct rays
   // unless the cull left a sampled unit out (Embree's rays cannot skip it; the walk can).
   bool directRaysPay(const Camera& camera, double culledTriangles) const;
-  void countPixels(const LzbRenderer::Frame& f, const Framebuffer& fb, FrameStats& stats) const;
+  void countPixels(const localz::LzbRenderer::Frame& f, const Framebuffer& fb,
+                   FrameStats& stats) const;
 
   const Scene& scene_;
   RenderOptions options_;
   HybridParams params_;
-  LzbRenderer lzb_;
+  localz::LzbRenderer lzb_;
   double areasSeconds_ = 0.0;  // before areas_: its construction sets it
   LeafAreas areas_;
   KeyBuffer keys_;

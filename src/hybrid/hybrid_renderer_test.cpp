@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "raycast/lzb_test_util.hpp"
-#include "raycast/raycast_renderer.hpp"
-#include "raycast/ray_witness.hpp"
+#include "raycast/exact/ray_witness.hpp"
+#include "raycast/exact/raycast_renderer.hpp"
+#include "raycast/lzb/lzb_test_util.hpp"
 #include "src/core/error.hpp"
 #include "src/core/shading.hpp"
 #include "src/image/metrics.hpp"
@@ -68,7 +68,7 @@ TEST(HybridRenderer, IsExactOnTheCity) {
 TEST(HybridRenderer, WithNothingSampledCastsLikeLzbEveryFrame) {
   const Scene scene = loadScene("builtin:city?blocks=4", true);
   HybridRenderer hybrid(scene, testing::lzbRenderOptions(), HybridParams{});
-  LzbRenderer lzb(scene, testing::lzbRenderOptions(), LzbOptions{});
+  localz::LzbRenderer lzb(scene, testing::lzbRenderOptions(), localz::LzbOptions{});
   for (int f : {0, 1}) {  // (at this size frame 2 samples distant blocks)
     const Camera cam = testing::pathFrame(scene, f, 4, 192, 144);
     FrameStats hs, ls;
@@ -93,9 +93,9 @@ TEST(HybridRenderer, SubPixelFieldIsSampledAndShowsVisibleTriangles) {
   const Scene* scene = field();
   if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
   HybridRenderer hybrid(*scene, testing::lzbRenderOptions(), sampling());
-  LzbOptions walk;  // what the hybrid's rays do where the point pass takes leaves
-  walk.farRays = FarRays::kWalk;
-  LzbRenderer lzb(*scene, testing::lzbRenderOptions(), walk);
+  localz::LzbOptions walk;  // what the hybrid's rays do where the point pass takes leaves
+  walk.farRays = localz::FarRays::kWalk;
+  localz::LzbRenderer lzb(*scene, testing::lzbRenderOptions(), walk);
   const Camera cam = testing::pathFrame(*scene, 1, 4, 160, 120);
   FrameStats hs, ls;
   const Framebuffer image = testing::renderFrame(hybrid, cam, {}, &hs);
@@ -115,7 +115,7 @@ TEST(HybridRenderer, SubPixelFieldIsSampledAndShowsVisibleTriangles) {
 // every culled leaf) never turns away a placement with a leaf the rule samples.
 TEST(HybridRenderer, PlacementTestNeverHidesASampledLeaf) {
   const Scene scene = loadScene("builtin:city?blocks=4", true);
-  const LzbAccel accel(scene, LzbAccelParams{});
+  const localz::LzbAccel accel(scene, localz::LzbAccelParams{});
   const hybrid::LeafAreas areas(accel);
   uint64_t sampledLeaves = 0, placementsTurnedAway = 0;
   for (double threshold : {1e-3, 0.1, 10.0})
@@ -123,14 +123,15 @@ TEST(HybridRenderer, PlacementTestNeverHidesASampledLeaf) {
       const Camera cam = testing::pathFrame(scene, f, 4, 192, 144);
       hybrid::SampledLeafRule rule(accel, areas, cam.pixelsPerUnitAt(1.0), threshold);
       rule.setPlane(cam.nearPlane());
-      const CulledScene culled = cullScene(accel, cam);  // (every leaf listed, none taken whole)
-      for (const CullPath& p : culled.paths) {
-        const LeafPlacement placement{p.depthGrad, p.depthOffset,
-                                      maxAreaScale(glm::dmat3(p.world))};
+      const localz::CulledScene culled =
+          localz::cullScene(accel, cam);  // (every leaf listed, none taken whole)
+      for (const localz::CullPath& p : culled.paths) {
+        const localz::LeafPlacement placement{p.depthGrad, p.depthOffset,
+                                              maxAreaScale(glm::dmat3(p.world))};
         const bool may = rule.mayTakeLeaves(p.node, placement);
         placementsTurnedAway += !may;
         for (uint32_t l = p.firstLeaf; l < p.firstLeaf + p.leafCount; ++l) {
-          const CullLeaf& leaf = culled.leaves[l];
+          const localz::CullLeaf& leaf = culled.leaves[l];
           if (!rule.sampled(p.node, leaf.leaf, leaf.depthMin, placement.areaScale)) continue;
           ++sampledLeaves;
           EXPECT_TRUE(may) << "threshold " << threshold << ", frame " << f;
@@ -224,9 +225,9 @@ TEST(HybridRenderer, DirectFrameCullsOnlyToTheMedianHitAndDrawsTheWholeCullsImag
   if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
   const Camera cam = testing::pathFrame(*scene, 1, 4, 160, 120);
   HybridRenderer hybrid(*scene, testing::lzbRenderOptions(), HybridParams{});
-  LzbOptions naive;
-  naive.stage = LzbStage::kNaive;
-  LzbRenderer lzb(*scene, testing::lzbRenderOptions(), naive);
+  localz::LzbOptions naive;
+  naive.stage = localz::LzbStage::kNaive;
+  localz::LzbRenderer lzb(*scene, testing::lzbRenderOptions(), naive);
   FrameStats hs, ls;
   const Framebuffer image = testing::renderFrame(hybrid, cam, {}, &hs);
   const Framebuffer whole = testing::renderFrame(lzb, cam, {}, &ls);

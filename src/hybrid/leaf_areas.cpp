@@ -47,12 +47,12 @@ void sortAlongCurve(std::vector<uint32_t>& tris, const std::vector<uint64_t>& co
 
 }  // namespace
 
-LeafAreas::LeafAreas(const LzbAccel& accel) {
+LeafAreas::LeafAreas(const localz::LzbAccel& accel) {
   const Scene& scene = accel.scene();
   nodes_.resize(scene.nodes.size());
 #pragma omp parallel for schedule(dynamic, 1)
   for (size_t n = 0; n < scene.nodes.size(); ++n) {
-    const NodeAccel& a = accel.node(uint32_t(n));
+    const localz::NodeAccel& a = accel.node(uint32_t(n));
     const Mesh& mesh = scene.nodes[n].mesh;
     PerNode& out = nodes_[n];
     std::vector<double> area(mesh.size());
@@ -97,7 +97,7 @@ LeafAreas::LeafAreas(const LzbAccel& accel) {
   sumSubtrees(accel);
 }
 
-void LeafAreas::sumSubtrees(const LzbAccel& accel) {
+void LeafAreas::sumSubtrees(const localz::LzbAccel& accel) {
   const Scene& scene = accel.scene();
   // Children before parents: an iterative depth-first post-order (the graph is acyclic).
   std::vector<uint8_t> done(scene.nodes.size(), 0);
@@ -114,7 +114,7 @@ void LeafAreas::sumSubtrees(const LzbAccel& accel) {
         continue;
       }
       PerNode& out = nodes_[n];
-      const NodeAccel& a = accel.node(n);
+      const localz::NodeAccel& a = accel.node(n);
       out.subtreeMax = out.wholeMax;
       for (size_t i = 0; i < instances.size(); ++i)
         if (!a.empty() && a.instanceUsable(uint32_t(i)))
@@ -133,10 +133,11 @@ void LeafAreas::sumSubtrees(const LzbAccel& accel) {
   }
 }
 
-std::vector<LeafAreas::FlatInstance> LeafAreas::flatten(const LzbAccel& accel, uint32_t node) const {
+std::vector<LeafAreas::FlatInstance> LeafAreas::flatten(const localz::LzbAccel& accel,
+                                                        uint32_t node) const {
   const Scene& scene = accel.scene();
   const auto usableInstances = [&](uint32_t n, auto&& visit) {
-    const NodeAccel& a = accel.node(n);
+    const localz::NodeAccel& a = accel.node(n);
     for (size_t i = 0; i < scene.nodes[n].instances.size(); ++i)
       if (!a.empty() && a.instanceUsable(uint32_t(i))) visit(uint32_t(i));
   };

@@ -1,24 +1,24 @@
 #pragma once
 // What the hybrid's point pass needs of every leaf of the local z-buffering octrees
-// (raycast/lzb_accel.hpp), and of every node as a whole: its triangles listed along a Morton
+// (raycast/lzb/lzb_accel.hpp), and of every node as a whole: its triangles listed along a Morton
 // curve of their centroids, with the inclusive prefix sums of their areas (node frame, double),
 // and its largest triangle's area; and the same sums over a node's instances, for the point pass
 // to take a whole instanced subtree as one unit. Stratified samples along a spatially coherent
-// list spread evenly over the surface (as rzb's distribution list in octree order does), so a pixel is less
-// often left without a sample. Built once per scene node: instanced content costs its unique
-// triangles only.
+// list spread evenly over the surface (as rzb's distribution list in octree order does), so a pixel
+// is less often left without a sample. Built once per scene node: instanced content costs its
+// unique triangles only.
 #include <cstdint>
 #include <span>
 #include <vector>
 
-#include "raycast/lzb_accel.hpp"
+#include "raycast/lzb/lzb_accel.hpp"
 #include "src/core/affine.hpp"
 
 namespace lzb::hybrid {
 
 class LeafAreas {
  public:
-  explicit LeafAreas(const LzbAccel& accel);
+  explicit LeafAreas(const localz::LzbAccel& accel);
   // The triangles of leaf `leaf` of scene node `node` (those of leafTriangles, along the curve)
   // and the inclusive prefix sums of their areas.
   std::span<const uint32_t> order(uint32_t node, uint32_t leaf) const {
@@ -81,8 +81,8 @@ class LeafAreas {
     std::vector<double> flatPrefix;  // 1 + flat entries
     double subtreeMax = 0.0;
   };
-  void sumSubtrees(const LzbAccel& accel);
-  std::vector<FlatInstance> flatten(const LzbAccel& accel, uint32_t node) const;
+  void sumSubtrees(const localz::LzbAccel& accel);
+  std::vector<FlatInstance> flatten(const localz::LzbAccel& accel, uint32_t node) const;
   std::vector<PerNode> nodes_;
   size_t flatTotal_ = 0;
 };

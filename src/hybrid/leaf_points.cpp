@@ -34,7 +34,7 @@ struct PathView {
   glm::dvec3 eyeLocal;
 };
 
-PathView pathView(const CullPath& path, const Camera& camera) {
+PathView pathView(const localz::CullPath& path, const Camera& camera) {
   const Affine world = Affine::from(path.world);
   const Affine cam = worldToCamera(camera.position(), camera.right(), camera.up(), camera.forward());
   const glm::dmat4 inverse = glm::inverse(path.world);
@@ -84,7 +84,7 @@ void splatPoint(const Mesh& mesh, uint32_t t, uint32_t wa, uint32_t wc, const Af
 
 // Splats samples [first, first + count) of one leaf.
 template <class Splatter>
-void splatLeaf(const LzbAccel& accel, const LeafAreas& areas, const CullPath& path,
+void splatLeaf(const localz::LzbAccel& accel, const LeafAreas& areas, const localz::CullPath& path,
                const PathView& view, const SampledLeaf& sl, uint64_t first, uint64_t count,
                const PointParams& params, const SampleStream& stream, std::vector<uint32_t> (&w)[4],
                Splatter& out, uint64_t& back) {
@@ -148,11 +148,11 @@ uint64_t firstAbove(const double* P, uint64_t n, uint64_t from, double lo, doubl
 // level's upper boundary, the value the descent compared it with, so a sample's triangle never
 // depends on where its job began.
 template <class Splatter>
-void splatSubtree(const LzbAccel& accel, const LeafAreas& areas, const CullPath& path,
-                  const PathView& view, const SampledLeaf& sl, uint64_t first, uint64_t count,
-                  const PointParams& params, const SampleStream& stream,
-                  std::vector<uint32_t> (&w)[4], std::vector<Level>& stack, Splatter& out,
-                  uint64_t& back) {
+void splatSubtree(const localz::LzbAccel& accel, const LeafAreas& areas,
+                  const localz::CullPath& path, const PathView& view, const SampledLeaf& sl,
+                  uint64_t first, uint64_t count, const PointParams& params,
+                  const SampleStream& stream, std::vector<uint32_t> (&w)[4],
+                  std::vector<Level>& stack, Splatter& out, uint64_t& back) {
   const Scene& scene = accel.scene();
   const double total = areas.subtreeArea(path.node), inv = 1.0 / double(sl.samples);
   stack.assign(1, {path.node, view.toCamera, view.eyeLocal, path.idBase, 0.0, 1.0,
@@ -199,11 +199,12 @@ void splatSubtree(const LzbAccel& accel, const LeafAreas& areas, const CullPath&
 }
 
 template <bool kWide, bool kPixel>
-PointCounts runJobs(const LzbAccel& accel, const LeafAreas& areas, const CulledScene& culled,
-                    std::span<const SampledLeaf> leaves, std::span<const uint32_t> mine,
-                    const std::vector<Job>& jobs, const std::vector<PathView>& views,
-                    const Camera& camera, const PointParams& params, const SampleStream& stream,
-                    KeyBuffer& keys, int threads) {
+PointCounts runJobs(const localz::LzbAccel& accel, const LeafAreas& areas,
+                    const localz::CulledScene& culled, std::span<const SampledLeaf> leaves,
+                    std::span<const uint32_t> mine, const std::vector<Job>& jobs,
+                    const std::vector<PathView>& views, const Camera& camera,
+                    const PointParams& params, const SampleStream& stream, KeyBuffer& keys,
+                    int threads) {
   const SplatSetup setup = SplatSetup::from(camera, params.splat);
   uint64_t drawn = 0, back = 0, splatted = 0;
   const long n = long(jobs.size());
@@ -243,41 +244,43 @@ bool SampledLeafRule::sampled(uint32_t node, uint32_t leaf, double depthMin, dou
   return areas_.maxArea(node, leaf) * areaScale * ppu * ppu < thresholdPx_;
 }
 
-bool SampledLeafRule::mayTakeLeaves(uint32_t node, const LeafPlacement& p) const {
+bool SampledLeafRule::mayTakeLeaves(uint32_t node, const localz::LeafPlacement& p) const {
   double lo, hi;
-  depthRange(accel_.node(node).contentBox(0), p.depthGrad, p.depthOffset, lo, hi);
+  localz::depthRange(accel_.node(node).contentBox(0), p.depthGrad, p.depthOffset, lo, hi);
   if (!(hi >= zClip_) || hi <= 0.0) return false;  // every leaf's nearest depth is at most hi
   const double ppu = pixelScale_ / hi;
   return areas_.leastLeafMaxArea(node) * p.areaScale * ppu * ppu < thresholdPx_;
 }
 
-bool SampledLeafRule::drawnElsewhere(uint32_t node, uint32_t leaf, const LeafPlacement& p) const {
+bool SampledLeafRule::drawnElsewhere(uint32_t node, uint32_t leaf,
+                                     const localz::LeafPlacement& p) const {
   double lo, hi;
-  depthRange(accel_.node(node).contentBox(leaf), p.depthGrad, p.depthOffset, lo, hi);
+  localz::depthRange(accel_.node(node).contentBox(leaf), p.depthGrad, p.depthOffset, lo, hi);
   return sampled(node, leaf, lo, p.areaScale);
 }
 
-bool SampledLeafRule::wholeUnit(const Bounds& box, double maxArea, const LeafPlacement& p) const {
+bool SampledLeafRule::wholeUnit(const Bounds& box, double maxArea,
+                                const localz::LeafPlacement& p) const {
   double lo, hi;
-  depthRange(box, p.depthGrad, p.depthOffset, lo, hi);
+  localz::depthRange(box, p.depthGrad, p.depthOffset, lo, hi);
   if (!(lo > 0.0) || (hi / lo) * (hi / lo) > kNodeDepthRatio) return false;
   const double ppu = pixelScale_ / lo;
   return maxArea * p.areaScale * ppu * ppu < thresholdPx_;
 }
 
-bool SampledLeafRule::nodeDrawnElsewhere(uint32_t node, const LeafPlacement& p) const {
-  const NodeAccel& a = accel_.node(node);
+bool SampledLeafRule::nodeDrawnElsewhere(uint32_t node, const localz::LeafPlacement& p) const {
+  const localz::NodeAccel& a = accel_.node(node);
   if (a.empty() || accel_.scene().nodes[node].mesh.empty()) return false;
   return wholeUnit(a.contentBox(0), areas_.nodeMaxArea(node), p);  // the root's: all triangles
 }
 
-bool SampledLeafRule::subtreeDrawnElsewhere(uint32_t node, const LeafPlacement& p) const {
+bool SampledLeafRule::subtreeDrawnElsewhere(uint32_t node, const localz::LeafPlacement& p) const {
   if (accel_.node(node).empty() || accel_.scene().nodes[node].instances.empty()) return false;
   return wholeUnit(accel_.scene().nodeBounds[node], areas_.subtreeMaxArea(node), p);
 }
 
-SampledUnits sampledLeaves(const LzbAccel& accel, const LeafAreas& areas,
-                           const CulledScene& culled, const SampledLeafRule& rule,
+SampledUnits sampledLeaves(const localz::LzbAccel& accel, const LeafAreas& areas,
+                           const localz::CulledScene& culled, const SampledLeafRule& rule,
                            const Camera& camera, const PointParams& params,
                            const SampleStream& stream) {
   const double pixels = double(camera.width()) * double(camera.height());
@@ -285,8 +288,9 @@ SampledUnits sampledLeaves(const LzbAccel& accel, const LeafAreas& areas,
   SampledUnits out;
   // A unit gets area x areaScale x (pixels per unit at depthMin)^2 x spp samples, stochastically
   // rounded by a Philox number keyed by the unit: the expected count on average.
-  const auto add = [&](uint32_t path, uint32_t leaf, double area, double areaScale, double depthMin) {
-    const CullPath& p = culled.paths[path];
+  const auto add = [&](uint32_t path, uint32_t leaf, double area, double areaScale,
+                       double depthMin) {
+    const localz::CullPath& p = culled.paths[path];
     const double ppu = camera.pixelsPerUnitAt(depthMin);
     const double expected =
         std::min(maxSamples, area * areaScale * ppu * ppu * params.samplesPerPixel);
@@ -298,23 +302,24 @@ SampledUnits sampledLeaves(const LzbAccel& accel, const LeafAreas& areas,
     if (samples > 0) out.leaves.push_back({path, leaf, key, samples, depthMin});
   };
   for (uint32_t path = 0; path < culled.paths.size(); ++path) {
-    const CullPath& p = culled.paths[path];
-    const LeafPlacement placement{p.depthGrad, p.depthOffset, maxAreaScale(glm::dmat3(p.world))};
+    const localz::CullPath& p = culled.paths[path];
+    const localz::LeafPlacement placement{p.depthGrad, p.depthOffset,
+                                          maxAreaScale(glm::dmat3(p.world))};
     const bool whole = p.drawnElsewhere;  // the cull applied the whole-node rule
     const bool leaves = !whole && !p.subtree && rule.mayTakeLeaves(p.node, placement);
     if (p.subtree) {
       double lo, hi;
-      depthRange(accel.scene().nodeBounds[p.node], p.depthGrad, p.depthOffset, lo, hi);
+      localz::depthRange(accel.scene().nodeBounds[p.node], p.depthGrad, p.depthOffset, lo, hi);
       add(path, kSubtree, areas.subtreeArea(p.node), placement.areaScale, lo);
     } else if (whole) {
       double lo, hi;
-      depthRange(accel.node(p.node).contentBox(0), p.depthGrad, p.depthOffset, lo, hi);
+      localz::depthRange(accel.node(p.node).contentBox(0), p.depthGrad, p.depthOffset, lo, hi);
       const std::span<const double> prefix = areas.nodePrefix(p.node);
       add(path, kWholeNode, prefix.back(), placement.areaScale, lo);
     }
     if (!leaves) continue;
     for (uint32_t l = p.firstLeaf; l < p.firstLeaf + p.leafCount; ++l) {
-      const CullLeaf& leaf = culled.leaves[l];
+      const localz::CullLeaf& leaf = culled.leaves[l];
       if (rule.sampled(p.node, leaf.leaf, leaf.depthMin, placement.areaScale))
         add(path, leaf.leaf, areas.total(p.node, leaf.leaf), placement.areaScale, leaf.depthMin);
     }
@@ -322,10 +327,11 @@ SampledUnits sampledLeaves(const LzbAccel& accel, const LeafAreas& areas,
   return out;
 }
 
-PointCounts splatLeaves(const LzbAccel& accel, const LeafAreas& areas, const CulledScene& culled,
-                        std::span<const SampledLeaf> leaves, std::span<const uint32_t> mine,
-                        const Camera& camera, const PointParams& params,
-                        const SampleStream& stream, KeyBuffer& keys, int threads) {
+PointCounts splatLeaves(const localz::LzbAccel& accel, const LeafAreas& areas,
+                        const localz::CulledScene& culled, std::span<const SampledLeaf> leaves,
+                        std::span<const uint32_t> mine, const Camera& camera,
+                        const PointParams& params, const SampleStream& stream, KeyBuffer& keys,
+                        int threads) {
   const std::vector<Job> jobs = makeJobs(leaves, mine);
   // Every path's view once per frame (paths without sampled leaves of this rank stay unset).
   std::vector<PathView> views(culled.paths.size());

@@ -27,8 +27,8 @@
 #include <span>
 #include <vector>
 
-#include "raycast/lzb_cull.hpp"
-#include "raycast/lzb_leaf_filter.hpp"
+#include "raycast/lzb/lzb_cull.hpp"
+#include "raycast/lzb/lzb_leaf_filter.hpp"
 #include "src/core/camera.hpp"
 #include "src/core/depth_key.hpp"
 #include "src/core/philox_stream.hpp"
@@ -44,29 +44,29 @@ struct PointParams {
   bool dropBackfaces = true;
 };
 
-class SampledLeafRule : public LeafFilter {
+class SampledLeafRule : public localz::LeafFilter {
  public:
   // Leaves are judged behind zClip, which may be set once the plane is known (the whole-node
   // rule does not need it: the cull applies that one before the plane is placed).
-  SampledLeafRule(const LzbAccel& accel, const LeafAreas& areas, double pixelScale,
+  SampledLeafRule(const localz::LzbAccel& accel, const LeafAreas& areas, double pixelScale,
                   double thresholdPx)
       : accel_(accel), areas_(areas), pixelScale_(pixelScale), thresholdPx_(thresholdPx) {}
   void setPlane(double zClip) { zClip_ = zClip; }
-  bool nodeDrawnElsewhere(uint32_t node, const LeafPlacement& p) const override;
-  bool drawnElsewhere(uint32_t node, uint32_t leaf, const LeafPlacement& p) const override;
-  bool subtreeDrawnElsewhere(uint32_t node, const LeafPlacement& p) const override;
+  bool nodeDrawnElsewhere(uint32_t node, const localz::LeafPlacement& p) const override;
+  bool drawnElsewhere(uint32_t node, uint32_t leaf, const localz::LeafPlacement& p) const override;
+  bool subtreeDrawnElsewhere(uint32_t node, const localz::LeafPlacement& p) const override;
   // The rule with the leaf's nearest view depth known (the cull's CullLeaf::depthMin).
   bool sampled(uint32_t node, uint32_t leaf, double depthMin, double areaScale) const;
   // False when no leaf of the placed node can be sampled (judged at its farthest depth with its
   // smallest leaf's largest triangle), so its leaves need no look one by one.
-  bool mayTakeLeaves(uint32_t node, const LeafPlacement& p) const;
+  bool mayTakeLeaves(uint32_t node, const localz::LeafPlacement& p) const;
 
  private:
   // The whole-unit rule: a box of the unit (node frame) within the depth ratio, its largest
   // triangle (node frame) below the threshold at the box's nearest depth.
-  bool wholeUnit(const Bounds& box, double maxArea, const LeafPlacement& p) const;
+  bool wholeUnit(const Bounds& box, double maxArea, const localz::LeafPlacement& p) const;
 
-  const LzbAccel& accel_;
+  const localz::LzbAccel& accel_;
   const LeafAreas& areas_;
   double zClip_ = std::numeric_limits<double>::infinity(), pixelScale_, thresholdPx_;
 };
@@ -76,8 +76,8 @@ constexpr uint32_t kSubtree = ~uint32_t(0) - 1;  // the node and everything it i
 constexpr double kNodeDepthRatio = 1.5;
 
 struct SampledLeaf {
-  uint32_t path, leaf;  // CulledScene::paths index; octree node of the path's scene node, or
-                        // kWholeNode for all its triangles, kSubtree for all under it
+  uint32_t path, leaf;  // localz::CulledScene::paths index; octree node of the path's scene node,
+                        // or kWholeNode for all its triangles, kSubtree for all under it
   uint64_t key;         // Philox key of the leaf at this placement
   uint64_t samples;
   double depthMin;
@@ -90,10 +90,10 @@ struct SampledUnits {
 
 // The placed nodes and culled leaves the rule samples, in cull order (which no rank count changes), with their
 // sample counts.
-SampledUnits sampledLeaves(const LzbAccel& accel, const LeafAreas& areas,
-                                       const CulledScene& culled, const SampledLeafRule& rule,
-                                       const Camera& camera, const PointParams& params,
-                                       const SampleStream& stream);
+SampledUnits sampledLeaves(const localz::LzbAccel& accel, const LeafAreas& areas,
+                           const localz::CulledScene& culled, const SampledLeafRule& rule,
+                           const Camera& camera, const PointParams& params,
+                           const SampleStream& stream);
 
 struct PointCounts {
   uint64_t drawn = 0, backfacing = 0, splatted = 0;
@@ -101,9 +101,10 @@ struct PointCounts {
 
 // Splats the samples of leaves[i] for i in `mine` into keys (sized to the camera) on `threads`
 // threads; the result depends on neither.
-PointCounts splatLeaves(const LzbAccel& accel, const LeafAreas& areas, const CulledScene& culled,
-                        std::span<const SampledLeaf> leaves, std::span<const uint32_t> mine,
-                        const Camera& camera, const PointParams& params,
-                        const SampleStream& stream, KeyBuffer& keys, int threads);
+PointCounts splatLeaves(const localz::LzbAccel& accel, const LeafAreas& areas,
+                        const localz::CulledScene& culled, std::span<const SampledLeaf> leaves,
+                        std::span<const uint32_t> mine, const Camera& camera,
+                        const PointParams& params, const SampleStream& stream, KeyBuffer& keys,
+                        int threads);
 
 }  // namespace lzb::hybrid

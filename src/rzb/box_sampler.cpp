@@ -35,7 +35,7 @@ __attribute__((noinline)) void refresh(Descent& d, const SampleStream& stream, u
 }  // namespace
 
 void enterEntry(Descent& d, const SampleStream& stream, uint64_t boxKey) {
-  const SampleTree* tree = d.tree;
+  const DistributionTree* tree = d.tree;
   const InstanceHot& r = tree->instanceHot(d.instance);
   if (d.linear) {
     d.t += d.A * r.t;
@@ -67,7 +67,7 @@ void enterEntry(Descent& d, const SampleStream& stream, uint64_t boxKey) {
 }
 
 void finishDescent(const Descent& d, DescentHit& hit) {
-  const SampleTree* tree = d.tree;
+  const DistributionTree* tree = d.tree;
   const EntryRec& e = tree->rec(d.pos);
   glm::dvec3 v0(e.v0), e1(e.e1), e2(e.e2);
   if (d.linear) {

@@ -18,13 +18,12 @@
 // virtual call or std::function per sample.
 #include <algorithm>
 #include <cstdint>
-
 #include <glm/glm.hpp>
 
-#include "src/rzb/box_selection.hpp"
 #include "src/core/area_sampling.hpp"
 #include "src/core/philox_stream.hpp"
-#include "src/rzb/sample_tree.hpp"
+#include "src/rzb/box_selection.hpp"
+#include "src/rzb/distribution_tree.hpp"
 
 namespace lzb::rzb {
 
@@ -44,7 +43,7 @@ struct Descent {
   glm::dvec3 t;
   double rem, res;
   uint64_t id, index;
-  const SampleTree* tree;
+  const DistributionTree* tree;
   uint32_t instance;  // the entry of `tree` to enter next
   uint32_t pos, ref;  // the record picked in the child (pos: its list position)
   uint32_t level;
@@ -66,13 +65,14 @@ static_assert(kDescentGroup <= 256, "group indices are bytes");
 struct DescentHit {
   glm::dvec3 p, n;
   uint64_t id;
-  const SampleTree* leaf;
+  const DistributionTree* leaf;
   uint32_t meshIndex;
 };
 
 // A descent into instance entry `instance` of `tree`.
-inline void startDescent(Descent& d, const SampleTree* tree, uint32_t instance, double rem,
-                         double res, uint32_t spare, uint64_t id, uint64_t index, float a, float c) {
+inline void startDescent(Descent& d, const DistributionTree* tree, uint32_t instance, double rem,
+                         double res, uint32_t spare, uint64_t id, uint64_t index, float a,
+                         float c) {
   d.A = glm::dmat3(1.0);
   d.t = glm::dvec3(0.0);
   d.rem = rem;
@@ -142,13 +142,13 @@ void descendGroup(Descent* group, uint32_t n, const SampleStream& stream, uint64
 }
 
 // Samples [first, first + count) of the `total` samples of box. Sink: void(const dvec3& p,
-// const dvec3& n, uint64_t id, const SampleTree* leaf, uint32_t meshIndex), and optionally
+// const dvec3& n, uint64_t id, const DistributionTree* leaf, uint32_t meshIndex), and optionally
 // flush(), called after every batch of kDrawBatch samples.
 template <class Sink>
 void drawBoxSamples(const SelectedBox& box, const SampleStream& stream, uint64_t first,
                     uint64_t count, uint64_t total, Sink& sink) {
   if (!count) return;
-  const SampleTree& tree = *box.tree;
+  const DistributionTree& tree = *box.tree;
   const EntryRec* recs = tree.recs();
   const bool clean = tree.clean(box.node);
   uint64_t b = 0, e = 0;

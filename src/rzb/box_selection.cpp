@@ -10,7 +10,7 @@ namespace {
 
 // One instance level of the traversal: where a tree's frame lies.
 struct Level {
-  const SampleTree* tree;
+  const DistributionTree* tree;
   Affine toWorld, toCamera;
   std::array<Plane, 6> planes;  // the view frustum in the tree's frame (normals not unit)
   glm::dvec3 eyeLocal;
@@ -33,7 +33,7 @@ class Selector {
   }
 
  private:
-  Level level(const SampleTree& tree, const Affine& toWorld, double areaScale, double stretch,
+  Level level(const DistributionTree& tree, const Affine& toWorld, double areaScale, double stretch,
               uint64_t idBase) const {
     Level l{&tree, toWorld, worldToCam_ * toWorld, {}, {}, areaScale, stretch, idBase};
     const glm::dmat3 at = glm::transpose(toWorld.a);
@@ -76,7 +76,7 @@ class Selector {
   }
 
   void visitTree(const Level& l) {
-    for (const SampleTree::ClassRoot& c : l.tree->classes()) visitNode(l, c.root, 0x3f);
+    for (const DistributionTree::ClassRoot& c : l.tree->classes()) visitNode(l, c.root, 0x3f);
   }
 
   void visitNode(const Level& l, uint32_t n, unsigned mask) {
@@ -85,8 +85,8 @@ class Selector {
       out_.aborted = true;
       return;
     }
-    const SampleTree& tree = *l.tree;
-    const TreeNode& t = tree.node(n);
+    const DistributionTree& tree = *l.tree;
+    const DistributionNode& t = tree.node(n);
     if (!(t.area > 0.0) || t.tight.empty()) return;
     bool outside;
     mask = cull(l, t.tight, mask, outside);
@@ -105,7 +105,7 @@ class Selector {
   }
 
   void enterInstance(const Level& l, uint32_t i, unsigned mask) {
-    const SampleTree& tree = *l.tree;
+    const DistributionTree& tree = *l.tree;
     if (!tree.instanceLive(i) || !(tree.instanceArea(i) > 0.0)) return;
     const InstanceRef& r = tree.instance(i);
     bool outside;
@@ -116,7 +116,7 @@ class Selector {
   }
 
   void emit(const Level& l, uint32_t n, Part part, double zmin, double zmax) {
-    const SampleTree& tree = *l.tree;
+    const DistributionTree& tree = *l.tree;
     SelectedBox b;
     b.tree = &tree;
     b.node = n;

@@ -33,7 +33,7 @@ struct SelectParams {
 };
 
 struct SelectedBox {
-  const SampleTree* tree = nullptr;
+  const DistributionTree* tree = nullptr;
   uint32_t node = 0;
   Part part = Part::kSubtree;
   bool fallback = false;

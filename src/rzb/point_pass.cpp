@@ -42,8 +42,8 @@ struct BoxSplatter {
 
   BoxSplatter(const SplatSetup& setup, KeyBuffer& kb, bool drop) : out(setup, kb), dropBackfaces(drop) {}
 
-  inline void operator()(const glm::dvec3& p, const glm::dvec3& n, uint64_t id, const SampleTree*,
-                         uint32_t) {
+  inline void operator()(const glm::dvec3& p, const glm::dvec3& n, uint64_t id,
+                         const DistributionTree*, uint32_t) {
     if (dropBackfaces && glm::dot(n, eye - p) < 0.0) {
       ++c.back;
       return;
@@ -155,7 +155,7 @@ struct GaussSink {
   glm::dvec3 eye{0.0};
   Counters c;
 
-  void operator()(const glm::dvec3& p, const glm::dvec3& n, uint64_t, const SampleTree* leaf,
+  void operator()(const glm::dvec3& p, const glm::dvec3& n, uint64_t, const DistributionTree* leaf,
                   uint32_t meshIndex) {
     const bool facing = glm::dot(n, eye - p) >= 0.0;
     if (dropBackfaces && !facing) {

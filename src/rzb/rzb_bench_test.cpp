@@ -118,9 +118,8 @@ TEST(RzbBench, PointPassParts) {
     uint64_t acc = 0;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads) reduction(^ : acc)
     for (size_t k = 0; k < jobs.size(); ++k) {
-      auto f = [&](const glm::dvec3& q, const glm::dvec3&, uint64_t id, const SampleTree*, uint32_t) {
-        acc ^= id + uint64_t(q.x);
-      };
+      auto f = [&](const glm::dvec3& q, const glm::dvec3&, uint64_t id, const DistributionTree*,
+                   uint32_t) { acc ^= id + uint64_t(q.x); };
       const SelectedBox& box = sel.boxes[jobs[k].box];
       drawBoxSamples(box, stream, jobs[k].first, jobs[k].count, box.samples, f);
     }
@@ -199,27 +198,26 @@ TEST(RzbBench, DynamicUpdates) {
   for (uint32_t t = 0; t < cityTriangles; ++t) city[t] = t;
 
   Stopwatch clock;
-  SampleTree full(scene, 0, {}, true, {}, TreeParams{});
+  DistributionTree full(scene, 0, {}, true, {}, DistributionParams{});
   const double rebuild = clock.lap();
-  SampleTree tree(scene, 0, city, false, {}, TreeParams{});
+  DistributionTree tree(scene, 0, city, false, {}, DistributionParams{});
   clock.lap();
   for (uint32_t t = cityTriangles; t < total; ++t) tree.insertTriangle(t);
   const double insert = clock.lap();
   const double areaAfterInsert = tree.totalArea();
   // Sampling speed while dirty against the static tree, over the whole tree.
-  auto sampleRate = [&](const SampleTree& tr) {
+  auto sampleRate = [&](const DistributionTree& tr) {
     const SampleStream stream(1, 2);
     uint64_t acc = 0, n = 0;
     Stopwatch c;
-    for (const SampleTree::ClassRoot& cr : tr.classes()) {
+    for (const DistributionTree::ClassRoot& cr : tr.classes()) {
       SelectedBox b;
       b.tree = &tr;
       b.node = cr.root;
       b.key = cr.root;
       const uint64_t count = uint64_t(2e6 * tr.node(cr.root).area / tr.totalArea()) + 1;
-      auto sink = [&](const glm::dvec3& p, const glm::dvec3&, uint64_t id, const SampleTree*, uint32_t) {
-        acc += id ^ uint64_t(p.x);
-      };
+      auto sink = [&](const glm::dvec3& p, const glm::dvec3&, uint64_t id, const DistributionTree*,
+                      uint32_t) { acc += id ^ uint64_t(p.x); };
       drawBoxSamples(b, stream, 0, count, count, sink);
       n += count;
     }

@@ -28,7 +28,7 @@ RzbRenderer::RzbRenderer(const Scene& scene, const RenderOptions& options, const
       fallback_(scene, params.fallbackRender, std::max(options.threads, 1)) {
   params_.validate();
   options_.threads = std::max(options_.threads, 1);
-  TreeParams tp;
+  DistributionParams tp;
   tp.areaRatio = params_.areaRatio;
   tp.progress = !options.quiet;
   trees_ = std::make_unique<SampleScene>(scene, tp);

@@ -20,7 +20,7 @@ namespace lzb::rzb {
 
 class RzbRenderer : public Renderer {
  public:
-  // Builds the sample trees (scene: finalized, outlives the renderer). Throws InputError for
+  // Builds the distribution trees (scene: finalized, outlives the renderer). Throws InputError for
   // invalid params.
   RzbRenderer(const Scene& scene, const RenderOptions& options, const RzbParams& params);
 
@@ -71,7 +71,7 @@ class RzbRenderer : public Renderer {
   bool colourFromIds() const override { return params_.reconstruct != Reconstruct::kGauss; }
 
   const RzbParams& params() const { return params_; }
-  // The sample trees, also for dynamic updates between frames (SampleScene's API).
+  // The distribution trees, also for dynamic updates between frames (SampleScene's API).
   SampleScene& sampleScene() { return *trees_; }
   const SampleCache* cache() const { return cache_.get(); }
   double lastEps() const { return lastEps_; }

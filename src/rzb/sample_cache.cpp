@@ -64,8 +64,10 @@ std::vector<CachedSample> buildSampleSet(const SelectedBox& box, int level, uint
   for (long c = 0; c < chunks; ++c) {
     const uint64_t first = uint64_t(c) * kChunk, count = std::min(kChunk, n - first);
     uint64_t k = first;
-    auto sink = [&](const glm::dvec3& p, const glm::dvec3& nrm, uint64_t id, const SampleTree*,
-                    uint32_t) { raw[k++] = CachedSample{glm::vec3(p), encodeNormal(nrm), id}; };
+    auto sink = [&](const glm::dvec3& p, const glm::dvec3& nrm, uint64_t id,
+                    const DistributionTree*, uint32_t) {
+      raw[k++] = CachedSample{glm::vec3(p), encodeNormal(nrm), id};
+    };
     drawBoxSamples(b, stream, first, count, n, sink);
   }
   // Quantize to the grid (cells of kCellSplats splats at this level's pixels per unit, in the

@@ -12,7 +12,7 @@ namespace lzb::rzb {
 // Builds of fewer unique triangles show no progress line.
 constexpr uint64_t kProgressTriangles = uint64_t(1) << 20;
 
-InstanceRef makeInstanceRef(const Scene& scene, uint32_t child, const SampleTree* childTree,
+InstanceRef makeInstanceRef(const Scene& scene, uint32_t child, const DistributionTree* childTree,
                             const glm::dmat4& transform, uint64_t idOffset) {
   InstanceRef r;
   r.node = child;
@@ -74,7 +74,7 @@ std::vector<InstanceRef> SampleScene::flattenInstances(uint32_t node) const {
   return out;
 }
 
-SampleScene::SampleScene(const Scene& scene, const TreeParams& params)
+SampleScene::SampleScene(const Scene& scene, const DistributionParams& params)
     : scene_(&scene), params_(params) {
   Stopwatch clock;
   const size_t n = scene.nodes.size();
@@ -101,7 +101,7 @@ SampleScene::SampleScene(const Scene& scene, const TreeParams& params)
   uint64_t toBuild = 0;
   for (uint32_t v = 0; v < n; ++v)
     if (height[v] >= 0) toBuild += scene.nodes[v].mesh.size();
-  Progress progress("rzb sample trees (triangles)", toBuild,
+  Progress progress("rzb distribution trees (triangles)", toBuild,
                     params_.progress && toBuild >= kProgressTriangles);
   for (int h = 0; h <= maxHeight; ++h) {
     std::vector<uint32_t> level;
@@ -114,15 +114,15 @@ SampleScene::SampleScene(const Scene& scene, const TreeParams& params)
 #pragma omp parallel for schedule(dynamic, 1)
     for (size_t k = 0; k < level.size(); ++k) {
       const uint32_t v = level[k];
-      trees_[v] = std::make_unique<SampleTree>(scene, v, std::span<const uint32_t>{}, true,
-                                               flattenInstances(v), params_);
+      trees_[v] = std::make_unique<DistributionTree>(scene, v, std::span<const uint32_t>{}, true,
+                                                     flattenInstances(v), params_);
       progress.add(scene.nodes[v].mesh.size());
     }
   }
   progress.done();
   for (uint32_t v = 0; v < n; ++v) {
     if (!trees_[v]) continue;
-    const SampleTree& t = *trees_[v];
+    const DistributionTree& t = *trees_[v];
     for (uint32_t i = 0; i < t.instanceCount(); ++i)
       referencedBy_[t.instance(i).node].push_back({v, i});
   }
@@ -132,7 +132,7 @@ SampleScene::SampleScene(const Scene& scene, const TreeParams& params)
     if (trees_[v] && !referencedBy_[v].empty()) trees_[v]->enableAlias();
   for (uint32_t v = 0; v < n; ++v) {
     if (!trees_[v]) continue;
-    const SampleTree& t = *trees_[v];
+    const DistributionTree& t = *trees_[v];
     const TreeStats ts = t.stats();
     ++stats_.trees;
     stats_.nodes += ts.nodes;
@@ -144,7 +144,7 @@ SampleScene::SampleScene(const Scene& scene, const TreeParams& params)
   stats_.buildSeconds = clock.seconds();
 }
 
-SampleTree& SampleScene::mutableTree(uint32_t node) {
+DistributionTree& SampleScene::mutableTree(uint32_t node) {
   if (node >= trees_.size() || !trees_[node])
     throw std::invalid_argument("SampleScene: node " + std::to_string(node) + " has no tree");
   return *trees_[node];
@@ -152,7 +152,7 @@ SampleTree& SampleScene::mutableTree(uint32_t node) {
 
 // The tree of `node` changed its area: refresh the entries that reference it, up the graph.
 void SampleScene::propagate(uint32_t node) {
-  const SampleTree& t = *trees_[node];
+  const DistributionTree& t = *trees_[node];
   for (const auto& [parent, entry] : referencedBy_[node]) {
     mutableTree(parent).updateInstance(entry, t.totalArea(), t.maxTriArea());
     propagate(parent);
@@ -171,8 +171,8 @@ void SampleScene::removeTriangle(uint32_t node, uint32_t meshTriangle) {
 
 uint32_t SampleScene::insertInstance(uint32_t node, uint32_t child, const glm::dmat4& transform,
                                      uint64_t idOffset) {
-  const SampleTree& c = mutableTree(child);
-  SampleTree& t = mutableTree(node);
+  const DistributionTree& c = mutableTree(child);
+  DistributionTree& t = mutableTree(node);
   const uint32_t entry = t.insertInstance(makeInstanceRef(*scene_, child, &c, transform, idOffset),
                                           c.totalArea(), c.maxTriArea());
   if (referencedBy_[child].empty()) mutableTree(child).enableAlias();
@@ -182,7 +182,7 @@ uint32_t SampleScene::insertInstance(uint32_t node, uint32_t child, const glm::d
 }
 
 void SampleScene::removeInstance(uint32_t node, uint32_t entry) {
-  SampleTree& t = mutableTree(node);
+  DistributionTree& t = mutableTree(node);
   t.removeInstance(entry);
   auto& refs = referencedBy_[t.instance(entry).node];
   refs.erase(std::remove(refs.begin(), refs.end(), std::make_pair(node, entry)), refs.end());

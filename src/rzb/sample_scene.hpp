@@ -1,11 +1,11 @@
 #pragma once
-// The randomized z-buffer's scene: one SampleTree per scene node that the root reaches (section
-// 7.3). Every node's triangles stay in the node's own frame and tree (so a triangle's ID is its
-// instance path's base + its mesh index, and the z-buffer fallback can draw it from the node's
-// uploaded mesh); instances become instance entries holding the child's tree and transform.
+// The randomized z-buffer's scene: one DistributionTree per scene node that the root reaches
+// (section 7.3). Every node's triangles stay in the node's own frame and tree (so a triangle's ID
+// is its instance path's base + its mesh index, and the z-buffer fallback can draw it from the
+// node's uploaded mesh); instances become instance entries holding the child's tree and transform.
 //
 // Instance flattening: an instance of a node that has no triangles (only instances) is replaced
-// by that node's instances, composed, while the tree stays under TreeParams::flattenBudget
+// by that node's instances, composed, while the tree stays under DistributionParams::flattenBudget
 // entries. Nested 2 x 2 instancing (the chessboard) then costs one instance level per 6 levels of
 // the scene graph when a sample descends.
 //
@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "src/core/scene.hpp"
-#include "src/rzb/sample_tree.hpp"
+#include "src/rzb/distribution_tree.hpp"
 
 namespace lzb::rzb {
 
@@ -29,13 +29,13 @@ struct SceneTreeStats {
 class SampleScene {
  public:
   // scene: finalized, outlives this. Builds trees in parallel (OpenMP, deterministic result).
-  SampleScene(const Scene& scene, const TreeParams& params);
+  SampleScene(const Scene& scene, const DistributionParams& params);
 
   const Scene& scene() const { return *scene_; }
-  const SampleTree& root() const { return *trees_[scene_->root]; }
-  const SampleTree* tree(uint32_t node) const { return trees_[node].get(); }
+  const DistributionTree& root() const { return *trees_[scene_->root]; }
+  const DistributionTree* tree(uint32_t node) const { return trees_[node].get(); }
   const SceneTreeStats& stats() const { return stats_; }
-  const TreeParams& params() const { return params_; }
+  const DistributionParams& params() const { return params_; }
 
   // Dynamic updates (O(tree height) in the tree of `node`, plus one entry update per referencing
   // instance entry up the graph). The triangle must already be in scene.nodes[node].mesh.
@@ -50,19 +50,19 @@ class SampleScene {
   void compact();
 
  private:
-  SampleTree& mutableTree(uint32_t node);
+  DistributionTree& mutableTree(uint32_t node);
   void propagate(uint32_t node);
   std::vector<InstanceRef> flattenInstances(uint32_t node) const;
 
   const Scene* scene_;
-  TreeParams params_;
-  std::vector<std::unique_ptr<SampleTree>> trees_;  // per scene node (null: no tree)
+  DistributionParams params_;
+  std::vector<std::unique_ptr<DistributionTree>> trees_;  // per scene node (null: no tree)
   std::vector<std::vector<std::pair<uint32_t, uint32_t>>> referencedBy_;  // (tree node, entry)
   SceneTreeStats stats_;
 };
 
 // An instance entry for child placed by transform (area and length scales, bounds, flags).
-InstanceRef makeInstanceRef(const Scene& scene, uint32_t child, const SampleTree* childTree,
+InstanceRef makeInstanceRef(const Scene& scene, uint32_t child, const DistributionTree* childTree,
                             const glm::dmat4& transform, uint64_t idOffset);
 
 }  // namespace lzb::rzb

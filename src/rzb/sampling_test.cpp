@@ -25,7 +25,7 @@ double chiSquare(const std::vector<uint64_t>& observed, const std::vector<double
 }
 
 // A box over a whole tree, for drawing samples without a camera.
-SelectedBox wholeBox(const SampleTree& tree, uint32_t root) {
+SelectedBox wholeBox(const DistributionTree& tree, uint32_t root) {
   SelectedBox b;
   b.tree = &tree;
   b.node = root;
@@ -63,10 +63,10 @@ TEST(Sampling, TrianglesArePickedInProportionToArea) {
     area.push_back(triangleArea(m, uint32_t(k - 1)));
   }
   scene.finalize();
-  TreeParams tp;
+  DistributionParams tp;
   tp.areaRatio = 64.0;
   tp.leafEntries = 2;
-  const SampleTree tree(scene, 0, {}, true, {}, tp);
+  const DistributionTree tree(scene, 0, {}, true, {}, tp);
   ASSERT_EQ(tree.classes().size(), 1u);
   ASSERT_GT(tree.nodeCount(), 3u);
   double total = 0.0;
@@ -78,15 +78,14 @@ TEST(Sampling, TrianglesArePickedInProportionToArea) {
   const uint64_t n = 240000;
   std::vector<uint64_t> count(12, 0);
   const SelectedBox box = wholeBox(tree, tree.classes()[0].root);
-  auto sink = [&](const glm::dvec3&, const glm::dvec3&, uint64_t id, const SampleTree*, uint32_t) {
-    ++count[id];
-  };
+  auto sink = [&](const glm::dvec3&, const glm::dvec3&, uint64_t id, const DistributionTree*,
+                  uint32_t) { ++count[id]; };
   drawBoxSamples(box, stream, 0, n, n, sink);
   // 11 degrees of freedom: P(chi2 > 31.3) = 0.001.
   EXPECT_LT(chiSquare(count, p, n), 31.3);
 
   // The same through a dirty tree (distribution-tree descent after a remove and re-insert).
-  SampleTree dyn(scene, 0, {}, true, {}, tp);
+  DistributionTree dyn(scene, 0, {}, true, {}, tp);
   dyn.removeTriangle(5);
   dyn.insertTriangle(5);
   std::fill(count.begin(), count.end(), 0);
@@ -100,12 +99,13 @@ TEST(Sampling, PointsAreUniformOnTheTriangle) {
   scene.addNode("t");
   ASSERT_TRUE(scene.nodes[0].mesh.add({0, 0, 0}, {4, 0, 0}, {1, 3, 0}, packRgba8(1, 1, 1)));
   scene.finalize();
-  const SampleTree tree(scene, 0, {}, true, {}, TreeParams{});
+  const DistributionTree tree(scene, 0, {}, true, {}, DistributionParams{});
   // 16 congruent sub-triangles of a 4 x 4 midpoint subdivision in barycentric (u, v): cell
   // (i, j) with its lower and upper halves.
   const int g = 4;
   std::vector<uint64_t> count(size_t(g * g), 0);
-  auto sink = [&](const glm::dvec3& p, const glm::dvec3&, uint64_t, const SampleTree*, uint32_t) {
+  auto sink = [&](const glm::dvec3& p, const glm::dvec3&, uint64_t, const DistributionTree*,
+                  uint32_t) {
     // Solve p = v0 + u e1 + v e2 for (u, v).
     const glm::dvec2 e1(4, 0), e2(1, 3);
     const double det = e1.x * e2.y - e1.y * e2.x;

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <string>
 
-#include "raycast/ray_witness.hpp"
-#include "raycast/raycast_renderer.hpp"
+#include "raycast/exact/ray_witness.hpp"
+#include "raycast/exact/raycast_renderer.hpp"
 #include "src/core/shading.hpp"
 #include "src/image/metrics.hpp"
 #include "src/image/test_reference.hpp"

@@ -3,9 +3,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <string>
 
-#include "raycast/lzb_test_util.hpp"
-#include "raycast/ray_witness.hpp"
-#include "raycast/raycast_renderer.hpp"
+#include "raycast/exact/ray_witness.hpp"
+#include "raycast/exact/raycast_renderer.hpp"
+#include "raycast/lzb/lzb_test_util.hpp"
 #include "src/core/shading.hpp"
 #include "src/image/metrics.hpp"
 #include "src/image/test_reference.hpp"

@@ -1,0 +1,287 @@
+#include "raycast/exact/embree_scene.hpp"
+
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "raycast/exact/raycast_test_util.hpp"
+
+namespace lzb {
+namespace {
+
+using testing::BruteHit;
+using testing::WorldTriangle;
+
+// The known quad seen from a camera: hit iff the plane point lies in the quad, ID by the side of
+// the diagonal, depth the analytic view depth (t of origin + t * dir on z = 0).
+void checkQuad(const CameraSpec& spec) {
+  const Scene scene = testing::quadScene();
+  EmbreeScene embree(scene, {});
+  const Camera cam(spec, 64, 48);
+  int hits = 0;
+  for (int y = 0; y < cam.height(); ++y)
+    for (int x = 0; x < cam.width(); ++x) {
+      const glm::dvec3 d = cam.pixelDirection(x + 0.5, y + 0.5);
+      const RayHit h = embree.intersect(cam.position(), d, cam.nearPlane(), cam.farPlane());
+      const double t = -cam.position().z / d.z;
+      const glm::dvec3 p = cam.position() + t * d;
+      const double inside =
+          std::min({1.0 - std::abs(p.x), 1.0 - std::abs(p.y), std::abs(p.x - p.y)});
+      if (std::abs(inside) < 1e-5) continue;  // on an edge: either answer is right
+      if (std::abs(p.x) > 1.0 || std::abs(p.y) > 1.0) {
+        EXPECT_FALSE(h.hit()) << x << "," << y;
+        continue;
+      }
+      ASSERT_TRUE(h.hit()) << x << "," << y;
+      EXPECT_EQ(h.id, p.y < p.x ? 0u : 1u) << x << "," << y;
+      EXPECT_NEAR(h.t, t, 2e-7 * t) << x << "," << y;
+      ++hits;
+    }
+  EXPECT_GT(hits, 500);
+}
+
+TEST(EmbreeScene, KnownQuadHeadOn) {
+  CameraSpec spec;
+  spec.position = {0.1, -0.05, 2.0};
+  spec.lookAt = {0.1, -0.05, 0.0};
+  spec.fovyDegrees = 60.0;
+  spec.nearPlane = 0.5;
+  spec.farPlane = 10.0;
+  checkQuad(spec);
+}
+
+TEST(EmbreeScene, KnownQuadOblique) {
+  CameraSpec spec;
+  spec.position = {0.4, -2.5, 1.5};
+  spec.lookAt = {0.1, 0.2, 0.0};
+  spec.up = {0, 0, 1};
+  spec.nearPlane = 0.5;
+  spec.farPlane = 10.0;
+  checkQuad(spec);
+}
+
+TEST(EmbreeScene, NearAndFarPlanesClipByDepth) {
+  const Scene scene = testing::quadScene();
+  EmbreeScene embree(scene, {});
+  const glm::dvec3 o(0.2, 0.3, 2.0), d(0.1, 0.05, -1.0);  // depth of the quad: exactly 2
+  EXPECT_TRUE(embree.intersect(o, d, 1.999, 2.001).hit());
+  EXPECT_FALSE(embree.intersect(o, d, 2.001, 5.0).hit());
+  EXPECT_FALSE(embree.intersect(o, d, 0.5, 1.999).hit());
+  EXPECT_FLOAT_EQ(embree.intersect(o, d, 0.5, 5.0).t, 2.0f);
+}
+
+// Every hit names the triangle a double-precision brute force over the flattened scene finds;
+// where they differ the ray is a near tie or grazes an edge.
+void compareWithBruteForce(const Scene& scene, const EmbreeSceneOptions& options, int samples) {
+  const std::vector<WorldTriangle> tris = testing::worldTriangles(scene);
+  ASSERT_EQ(tris.size(), scene.expandedTriangles());
+  EmbreeScene embree(scene, options);
+  const Camera cam = testing::camera(scene, 320, 240);
+  std::mt19937_64 rng(11);
+  // The middle of the image, where the triangles are (and gaps between them).
+  std::uniform_real_distribution<double> px(0.25 * cam.width(), 0.75 * cam.width()),
+      py(0.25 * cam.height(), 0.75 * cam.height());
+  int hits = 0, differ = 0;
+  for (int i = 0; i < samples; ++i) {
+    const glm::dvec3 d = cam.pixelDirection(px(rng), py(rng));
+    const RayHit h = embree.intersect(cam.position(), d, cam.nearPlane(), cam.farPlane());
+    const BruteHit b =
+        testing::bruteForce(tris, cam.position(), d, cam.nearPlane(), cam.farPlane());
+    if (h.hit()) {
+      // The ID resolves to a stored triangle, placed where the brute force put it.
+      const auto ref = scene.resolve(h.id);
+      ASSERT_TRUE(ref.has_value());
+      const Mesh& mesh = scene.nodes[ref->node].mesh;
+      const glm::dvec3 v0(ref->transform *
+                          glm::dvec4(glm::dvec3(mesh.vertex(ref->triangle, 0)), 1));
+      const WorldTriangle* tri = testing::findTriangle(tris, h.id);
+      ASSERT_NE(tri, nullptr);
+      EXPECT_EQ(v0, tri->a);
+      ++hits;
+    }
+    if (h.id == b.id) {
+      if (h.hit()) {
+        EXPECT_NEAR(h.t, b.t, 1e-5 * b.t);
+      }
+      continue;
+    }
+    ++differ;
+    if (h.hit() && b.id != kNoId) {
+      const BruteHit mine =
+          testing::mollerTrumbore(*testing::findTriangle(tris, h.id), cam.position(), d);
+      EXPECT_NEAR(mine.t, b.t, 1e-5 * b.t) << "not a tie at sample " << i;
+      EXPECT_GT(mine.margin, -1e-5) << "ray passes outside the reported triangle, sample " << i;
+    } else {
+      EXPECT_LT(std::abs(b.margin), 1e-5) << "missed a clear hit at sample " << i;
+    }
+  }
+  EXPECT_GT(hits, samples / 4);
+  EXPECT_LE(differ, samples / 100);
+}
+
+TEST(EmbreeScene, NestedInstancesMatchBruteForce) {
+  const Scene scene = testing::nestedScene();
+  EmbreeScene embree(scene, {});
+  EXPECT_EQ(embree.buildStats().levels, 4u);  // one per node, however often instanced
+  EXPECT_EQ(embree.buildStats().instances, 10u);
+  EXPECT_EQ(embree.buildStats().triangles, scene.uniqueTriangles());
+  compareWithBruteForce(scene, {}, 400);
+}
+
+TEST(EmbreeScene, NestedInstancesMatchBruteForceMediumQuality) {
+  EmbreeSceneOptions options;
+  options.highQuality = false;
+  compareWithBruteForce(testing::nestedScene(3), options, 400);
+}
+
+// Packets (down through the instance levels) give exactly the single-ray hits.
+void expectBatchEqualsSingle(const Scene& scene, const Camera& cam) {
+  EmbreeScene embree(scene, {});
+  std::vector<Ray> rays;
+  for (int y = 0; y < cam.height(); ++y)
+    for (int x = 0; x < cam.width(); ++x)
+      rays.push_back(
+          {cam.position(), cam.pixelDirection(x + 0.5, y + 0.5), cam.nearPlane(), cam.farPlane()});
+  rays.pop_back();  // a partial last packet
+  std::vector<RayHit> hits(rays.size());
+  embree.intersect(rays, hits);
+  int covered = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const RayHit one = embree.intersect(rays[i].origin, rays[i].dir, rays[i].tnear, rays[i].tfar);
+    EXPECT_EQ(hits[i].id, one.id) << i;
+    if (one.hit()) {
+      EXPECT_EQ(hits[i].t, one.t) << i;
+    }
+    covered += one.hit();
+  }
+  EXPECT_GT(covered, int(rays.size()) / 5);
+}
+
+TEST(EmbreeScene, BatchEqualsSingleRays) {
+  const Scene scene = testing::nestedScene();
+  expectBatchEqualsSingle(scene, testing::camera(scene, 40, 30));
+}
+
+// The nested scene seen through `cam`, and again 1e7 away (alone, and beside a copy at the
+// origin, which makes the root frame 1e7 wide): the same IDs and depths.
+void expectSameFarAway(const Scene& near, const Camera& cam, const glm::dvec3& shift,
+                       bool withCopyAtOrigin) {
+  Scene far = testing::translated(near, shift);
+  if (withCopyAtOrigin) {
+    far.nodes[far.root].instances.push_back({near.root, glm::dmat4(1.0)});
+    far.finalize();
+  }
+  EmbreeScene a(near, {}), b(far, {});
+  CameraSpec spec = cam.spec();
+  spec.position += shift;
+  spec.lookAt += shift;
+  const Camera camFar(spec, cam.width(), cam.height());
+  int differ = 0, covered = 0;
+  for (int y = 0; y < cam.height(); ++y)
+    for (int x = 0; x < cam.width(); ++x) {
+      const RayHit ha = a.intersect(cam.position(), cam.pixelDirection(x + 0.5, y + 0.5),
+                                    cam.nearPlane(), cam.farPlane());
+      const RayHit hb = b.intersect(camFar.position(), camFar.pixelDirection(x + 0.5, y + 0.5),
+                                    camFar.nearPlane(), camFar.farPlane());
+      covered += ha.hit();
+      if (ha.id != hb.id) {
+        ++differ;
+        continue;
+      }
+      if (ha.hit()) {
+        EXPECT_NEAR(hb.t, ha.t, 1e-5 * ha.t);
+      }
+    }
+  EXPECT_GT(covered, cam.width() * cam.height() / 10);
+  EXPECT_LE(differ, 2);
+}
+
+TEST(EmbreeScene, FarFromOriginMatchesOrigin) {
+  const Scene near = testing::nestedScene();
+  CameraSpec spec = testing::closeSpec(near);
+  spec.position = spec.lookAt + 0.3 * (spec.position - spec.lookAt);  // closer still
+  spec.nearPlane = 1e-3;
+  const Camera cam(spec, 160, 120);
+  expectSameFarAway(near, cam, {1.0e7, -2.5e7, 1.0e7}, false);
+  expectSameFarAway(near, cam, {1.0e7, -2.5e7, 1.0e7}, true);
+  expectSameFarAway(near, cam, {-3.0e7, 0.0, 0.0}, true);
+}
+
+TEST(EmbreeScene, RootMeshFarFromOriginMatchesBruteForce) {
+  // Triangles stored in float at 1e7 in the root frame (no instance): recentred before Embree.
+  Scene scene;
+  scene.addNode("far mesh");
+  std::mt19937_64 rng(5);
+  Mesh local;
+  testing::addRandomTriangles(local, 200, 0.5, rng);
+  const glm::vec3 at(1.0e7f, 2.0e7f, -1.0e7f);
+  for (size_t t = 0; t < local.size(); ++t)
+    scene.nodes[0].mesh.add(at + 4.0f * local.vertex(t, 0), at + 4.0f * local.vertex(t, 1),
+                            at + 4.0f * local.vertex(t, 2), local.colors[t]);
+  scene.finalize();
+  compareWithBruteForce(scene, {}, 300);
+}
+
+TEST(EmbreeScene, RaysThroughSharedEdgesDoNotLeak) {
+  const Scene scene = testing::quadScene();
+  EmbreeScene embree(scene, {});
+  // Dyadic directions: in float the rays pass exactly through the diagonal (the last one lies in
+  // the plane x = y that holds the edge, the others are axis-parallel or oblique).
+  const glm::dvec3 dirs[] = {{0, 0, -1}, {0.25, -0.125, -1}, {1.0 / 1024, 0, -1}, {0.5, 0.5, -1}};
+  for (int k = -63; k <= 63; ++k) {
+    const glm::dvec3 p(k / 64.0, k / 64.0, 0.0);  // exactly on the shared diagonal
+    for (const glm::dvec3& d : dirs) {
+      const glm::dvec3 o = p - 2.0 * d;
+      const RayHit h = embree.intersect(o, d, 0.1, 10.0);
+      ASSERT_TRUE(h.hit()) << "leak at k=" << k << " dir " << d.x << "," << d.y;
+      EXPECT_LE(h.id, 1u);
+      EXPECT_NEAR(h.t, 2.0, 1e-6);
+    }
+  }
+}
+
+TEST(EmbreeScene, RaysThroughASharedVertexDoNotLeak) {
+  // A fan of 8 triangles around the origin; rays through the centre from many directions.
+  Scene scene;
+  scene.addNode("fan");
+  for (int i = 0; i < 8; ++i) {
+    const double a0 = i * 0.7853981633974483, a1 = (i + 1) * 0.7853981633974483;
+    scene.nodes[0].mesh.add({0, 0, 0}, {float(std::cos(a0)), float(std::sin(a0)), 0},
+                            {float(std::cos(a1)), float(std::sin(a1)), 0}, testing::grey(50));
+  }
+  scene.finalize();
+  EmbreeScene embree(scene, {});
+  std::mt19937_64 rng(2);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int i = 0; i < 200; ++i) {
+    const glm::dvec3 d(u(rng), u(rng), -1.0);
+    const RayHit h = embree.intersect(-d, d, 0.0, 3.0);
+    ASSERT_TRUE(h.hit()) << "leak through the vertex, ray " << i;
+    EXPECT_LT(h.id, 8u);
+  }
+}
+
+TEST(EmbreeScene, EmptySceneMissesEverything) {
+  Scene scene;
+  scene.addNode("empty");
+  const uint32_t child = scene.addNode("empty child");
+  scene.nodes[0].instances.push_back({child, glm::dmat4(1.0)});
+  scene.finalize();
+  EmbreeScene embree(scene, {});
+  EXPECT_FALSE(embree.intersect({0, 0, 5}, {0, 0, -1}, 0.1, 100.0).hit());
+}
+
+TEST(EmbreeScene, SingularInstancesAreSkipped) {
+  Scene scene = testing::quadScene();
+  const uint32_t root = scene.addNode("root");
+  scene.nodes[root].instances.push_back({0, glm::dmat4(1.0)});
+  scene.nodes[root].instances.push_back({0, glm::dmat4(0.0)});
+  scene.root = root;
+  scene.finalize();
+  EmbreeScene embree(scene, {});
+  EXPECT_EQ(embree.buildStats().skippedInstances, 1u);
+  EXPECT_EQ(embree.intersect({0.5, -0.5, 1}, {0, 0, -1}, 0.1, 10.0).id, 0u);
+}
+
+}  // namespace
+}  // namespace lzb
