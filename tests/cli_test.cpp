@@ -2,6 +2,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <string>
 #include <utility>
 
@@ -281,6 +282,46 @@ TEST(Render, LzbRefusesASceneTooInstancedToCullAndLeavesNoFolder) {
   EXPECT_NE(r.output.find("too instanced"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("hybrid"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
+}
+
+// The bytes of a file, to compare two runs' images.
+std::string bytesOf(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(Batch, RendersEachLineAsItsOwnRenderWithNoOptionCarriedOver) {
+  const fs::path dir = freshDir("batch");
+  const std::string render = "'builtin:sphereflake?depth=1' --method rzb --frames 1 --width 32 "
+                             "--height 24 --threads 1 --quiet --out ";
+  std::ofstream(dir / "jobs.txt") << "# two renders\n" << render << "'" << (dir / "a").string()
+                                  << "' --splat 3\n\n" << render << (dir / "b").string() << "\n";
+  const RunResult batch = runLzb("batch " + (dir / "jobs.txt").string() + " --quiet");
+  ASSERT_EQ(batch.status, 0) << batch.output;
+  const RunResult alone = runLzb("render " + render + (dir / "c").string());
+  ASSERT_EQ(alone.status, 0) << alone.output;
+  EXPECT_EQ(readJson(dir / "a" / "report.json")["method_parameters"]["splat"], 3);
+  // The second line left --splat alone: the default again, not the first line's 3.
+  EXPECT_EQ(readJson(dir / "b" / "report.json")["method_parameters"]["splat"], 1);
+  EXPECT_EQ(bytesOf(dir / "b" / "frame_0000.exr"), bytesOf(dir / "c" / "frame_0000.exr"));
+  EXPECT_NE(bytesOf(dir / "a" / "frame_0000.exr"), bytesOf(dir / "c" / "frame_0000.exr"));
+}
+
+TEST(Batch, ABadLineIsRefusedNamingItsLineBeforeAnyRender) {
+  const fs::path dir = freshDir("batch_bad");
+  const fs::path jobs = dir / "jobs.txt";
+  std::ofstream(jobs) << "builtin:sphereflake --frames 1 --width 32 --height 24 --out "
+                      << (dir / "a").string() << "\n\nbuiltin:sphereflake --frames 0 --out "
+                      << (dir / "b").string() << "\n";
+  const RunResult r = runLzb("batch " + jobs.string() + " --quiet");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find(jobs.string() + ":3"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("frames"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir / "a"));
+  EXPECT_FALSE(fs::exists(dir / "b"));
+  const RunResult missing = runLzb("batch " + (dir / "none.txt").string());
+  EXPECT_EQ(missing.status, 2) << missing.output;
+  EXPECT_NE(missing.output.find("none.txt"), std::string::npos) << missing.output;
 }
 
 TEST(Info, CountsInstancedTrianglesAndBuildsOctrees) {

@@ -6,6 +6,7 @@
 
 #include "mpi/failure.hpp"
 #include "mpi/group.hpp"
+#include "src/cli/batch_command.hpp"
 #include "src/cli/build_tree_command.hpp"
 #include "src/cli/compare_command.hpp"
 #include "src/cli/export_command.hpp"
@@ -54,6 +55,10 @@ int main(int argc, char** argv) {
   addSweepOptions(*app.add_subcommand("sweep", "render every combination of --param values against "
                                                "the exact reference: sweep.csv + sweep.png"),
                   sweep);
+  lzb::BatchArgs batch;
+  addBatchOptions(*app.add_subcommand("batch", "many renders in one job: each line of FILE holds "
+                                               "the arguments of one `lzb render`"),
+                  batch);
   lzb::InfoArgs info;
   addInfoOptions(*app.add_subcommand("info", "triangle counts, bounds, octree statistics, memory"),
                  info);
@@ -91,6 +96,7 @@ int main(int argc, char** argv) {
     if (helpShown) return 0;
     if (app.got_subcommand("render")) return runRender(render, g, commandLine);
     if (app.got_subcommand("sweep")) return runSweep(sweep, g, commandLine);
+    if (app.got_subcommand("batch")) return runBatch(batch, g);
     // info, limits, export, build-tree and compare: work of each rank alone, written by the root.
     int status = 0;
     lzb::mpi::agree(g, [&] {

@@ -4,9 +4,21 @@
 
 namespace lzb {
 
-const std::vector<std::unique_ptr<Method>>& methods() {
-  static const std::vector<std::unique_ptr<Method>> all = makeRegisteredMethods();
+namespace {
+
+std::vector<std::unique_ptr<Method>>& registry() {
+  static std::vector<std::unique_ptr<Method>> all = makeRegisteredMethods();
   return all;
+}
+
+}  // namespace
+
+const std::vector<std::unique_ptr<Method>>& methods() {
+  return registry();
+}
+
+void resetMethods() {
+  registry() = makeRegisteredMethods();
 }
 
 std::string methodNames(bool exactOnly) {
