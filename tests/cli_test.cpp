@@ -9,7 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "src/image/frame_io.hpp"
-#include "tests/cli_runner.hpp"
+#include "tests/support/cli_runner.hpp"
+#include "tests/support/meshes.hpp"
 
 namespace lzb::test {
 namespace {

@@ -12,7 +12,9 @@
 #include "src/core/shading.hpp"
 #include "src/core/system.hpp"
 #include "src/scene/load.hpp"
-#include "tests/cli_runner.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/cli_runner.hpp"
+#include "tests/support/render.hpp"
 
 namespace lzb::test {
 namespace {
@@ -40,9 +42,9 @@ std::unique_ptr<Renderer> makeRenderer(const std::string& method, const Scene& s
 
 constexpr int kFrames = 2;  // consecutive frames: state kept between frames (plane reuse, caches)
 
+// Frame f of 8 on the default path, small.
 Camera frameCamera(const Scene& scene, int f) {
-  const CameraSpec base = scene.camera ? *scene.camera : frameBounds(scene.bounds());
-  return Camera(withClipPlanes(pathCamera(scene, base, f, 8), scene.bounds()), 96, 72);
+  return pathFrame(scene, f, 8, 96, 72);
 }
 
 // The frames one renderer gives as share `share` (depth and ID; colour too when it is not a
@@ -50,11 +52,7 @@ Camera frameCamera(const Scene& scene, int f) {
 std::vector<Framebuffer> renderFrames(Renderer& r, const Scene& scene, WorkShare share) {
   std::vector<Framebuffer> out;
   for (int f = 0; f < kFrames; ++f) {
-    const Camera cam = frameCamera(scene, f);
-    Framebuffer fb(cam.width(), cam.height());
-    FrameStats stats;
-    r.render(cam, f, share, fb, stats);
-    out.push_back(std::move(fb));
+    out.push_back(renderFrame(r, frameCamera(scene, f), nullptr, share, f));
   }
   return out;
 }

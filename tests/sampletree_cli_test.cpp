@@ -13,7 +13,9 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/cli_runner.hpp"
+#include "tests/support/cli_runner.hpp"
+#include "tests/support/files.hpp"
+#include "tests/support/meshes.hpp"
 
 namespace lzb::test {
 namespace {
@@ -21,13 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string bunny() {
-  const fs::path p = dataDir() / "bunny00.off";
-  return fs::exists(p) ? p.string() : "";
-}
-
-std::vector<char> readBytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return scannedMesh("bunny00.off");
 }
 
 void writeBytes(const fs::path& p, const std::vector<char>& bytes) {
@@ -56,7 +52,7 @@ TEST(SampleTreeCli, StoredTreeRendersLikeTheTreeBuiltInMemory) {
                              " --out " + (dir / "memory").string());
   ASSERT_EQ(b.status, 0) << b.output;
   for (const char* f : {"frame_0000.exr", "frame_0001.exr", "frame_0000.png"})
-    EXPECT_EQ(readBytes(dir / "stored" / f), readBytes(dir / "memory" / f)) << f;
+    EXPECT_EQ(fileBytes(dir / "stored" / f), fileBytes(dir / "memory" / f)) << f;
   const nlohmann::json rep = readJson(dir / "stored" / "report.json");
   const nlohmann::json& frame = rep["frames"][0];
   EXPECT_GT(frame["counts"]["triangles_drawn"].get<double>(), 0.0);
@@ -80,7 +76,7 @@ TEST(SampleTreeCli, OutOfCoreBuildWritesTheInMemoryStore) {
     ASSERT_EQ(b.status, 0) << b.output;
     EXPECT_NE(b.output.find("built out of core"), std::string::npos) << b.output;
     EXPECT_EQ(b.output.find(" 1 buckets"), std::string::npos) << "one bucket: nothing split\n" << b.output;
-    EXPECT_EQ(readBytes(dir / "external.lzbtree"), readBytes(dir / "memory.lzbtree")) << scene;
+    EXPECT_EQ(fileBytes(dir / "external.lzbtree"), fileBytes(dir / "memory.lzbtree")) << scene;
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 2) << scene;
   }
 }
@@ -103,10 +99,10 @@ TEST(SampleTreeCli, OutOfCoreBuildStreamsAPlyFile) {
   EXPECT_EQ(b.output.find("not streamed"), std::string::npos) << b.output;
   EXPECT_EQ(b.output.find(" 1 buckets"), std::string::npos) << "one bucket: nothing split\n"
                                                             << b.output;
-  EXPECT_EQ(readBytes(dir / "external.lzbtree"), readBytes(dir / "memory.lzbtree"));
+  EXPECT_EQ(fileBytes(dir / "external.lzbtree"), fileBytes(dir / "memory.lzbtree"));
   EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 3);
 
-  std::vector<char> bytes = readBytes(ply);
+  std::vector<char> bytes = fileBytes(ply);
   const std::string text(bytes.begin(), bytes.end());
   const size_t data = text.find("end_header\n") + 11;
   const size_t faces = std::stoul(text.substr(text.find("element vertex ") + 15)) * 12 + data;
@@ -147,14 +143,14 @@ TEST(SampleTreeCli, OutOfCoreBuildLoadsAnAsciiPly) {
                              (dir / "external.lzbtree").string());
   ASSERT_EQ(b.status, 0) << b.output;
   EXPECT_NE(b.output.find("not streamed (an ASCII PLY)"), std::string::npos) << b.output;
-  EXPECT_EQ(readBytes(dir / "external.lzbtree"), readBytes(dir / "memory.lzbtree"));
+  EXPECT_EQ(fileBytes(dir / "external.lzbtree"), fileBytes(dir / "memory.lzbtree"));
 }
 
 // Damage of every kind: exit status 2, the store named, no output folder.
 TEST(SampleTreeCli, DamagedStoresAreRefused) {
   const fs::path dir = freshDir("sampletree_damaged");
   const fs::path store = buildStore(dir, kScene);
-  const std::vector<char> good = readBytes(store);
+  const std::vector<char> good = fileBytes(store);
   struct Damage {
     std::string name, mention;
     std::vector<char> bytes;
@@ -203,7 +199,7 @@ TEST(SampleTreeCli, OutOfCoreRendersLikeTheStoreReadWhole) {
   ASSERT_EQ(tiny.status, 0) << tiny.output;
   for (const char* run : {"big", "tiny"})
     for (const char* f : {"frame_0000.exr", "frame_0001.exr", "frame_0000.png", "frame_0001.png"})
-      EXPECT_EQ(readBytes(dir / run / f), readBytes(dir / "whole" / f)) << run << " " << f;
+      EXPECT_EQ(fileBytes(dir / run / f), fileBytes(dir / "whole" / f)) << run << " " << f;
   const nlohmann::json& frame = rep["frames"][0]["counts"];
   EXPECT_GT(frame["nodes_loaded"].get<double>(), 0.0) << frame.dump();
   // Frame 0 loads every node it draws (48 bytes a triangle), and what its prefetch loaded so far.
@@ -246,7 +242,7 @@ TEST(SampleTreeCli, StoreRendersWithoutLoadingTheScene) {
   ASSERT_EQ(whole.status, 0) << whole.output;
   for (const char* run : {"loaded", "whole"})
     for (const char* f : {"frame_0000.exr", "frame_0001.exr", "frame_0000.png", "frame_0001.png"})
-      EXPECT_EQ(readBytes(dir / run / f), readBytes(dir / "unread" / f)) << run << " " << f;
+      EXPECT_EQ(fileBytes(dir / run / f), fileBytes(dir / "unread" / f)) << run << " " << f;
   nlohmann::json a = readJson(dir / "unread" / "report.json")["scene"];
   nlohmann::json b = readJson(dir / "loaded" / "report.json")["scene"];
   EXPECT_FALSE(a["loaded"].get<bool>());
@@ -263,7 +259,7 @@ TEST(SampleTreeCli, StoreRendersWithoutLoadingTheScene) {
 TEST(SampleTreeCli, OutOfCoreCorruptionFoundAtRenderTimeEndsTheJob) {
   const fs::path dir = freshDir("sampletree_ooc_corrupt");
   const fs::path store = buildStore(dir, kScene, "--leaf-triangles 8");
-  std::vector<char> bytes = readBytes(store);
+  std::vector<char> bytes = fileBytes(store);
   // Every byte of the triangle positions and IDs after the node table's blocks: whatever a frame
   // draws is damaged, while the store still opens.
   uint64_t nodes = 0;
@@ -320,7 +316,7 @@ TEST(SampleTreeCli, NodeServerRefusals) {
     EXPECT_NE(r.output.find(c.mention), std::string::npos) << c.name << ": " << r.output;
     EXPECT_FALSE(fs::exists(out)) << c.name;
   }
-  std::vector<char> bytes = readBytes(store);
+  std::vector<char> bytes = fileBytes(store);
   bytes.resize(bytes.size() - 7);
   const fs::path bad = dir / "truncated.lzbtree", out = dir / "out_truncated";
   writeBytes(bad, bytes);

@@ -30,7 +30,7 @@
 
 #include "src/core/method.hpp"
 #include "src/image/frame_io.hpp"
-#include "tests/cli_runner.hpp"
+#include "tests/support/cli_runner.hpp"
 
 namespace lzb::test {
 namespace {
@@ -228,9 +228,9 @@ const std::map<std::string, Case>& cases();
 // The twin's accuracy for `method`, rendered once per lzb binary (cached in a file named after
 // the binary's modification time, so a rebuilt lzb renders its twins again).
 double twinRate(const std::string& twin, const std::string& method) {
-  const auto built = fs::last_write_time(LZB_BINARY).time_since_epoch().count();
-  const fs::path cache = fs::path(LZB_WORK_DIR) /
-                         ("twin_" + twin + "_" + method + "_" + std::to_string(built) + ".txt");
+  const auto built = fs::last_write_time(lzbBinary()).time_since_epoch().count();
+  const fs::path cache =
+      workDir() / ("twin_" + twin + "_" + method + "_" + std::to_string(built) + ".txt");
   if (std::ifstream in(cache); in) {
     double v = -1.0;
     if (in >> v && v >= 0.0) return v;

@@ -18,10 +18,14 @@
 #include "raycast/exact/ray_witness.hpp"
 #include "raycast/exact/raycast_renderer.hpp"
 #include "src/image/metrics.hpp"
-#include "src/image/test_reference.hpp"
 #include "src/rzb/rzb_renderer.hpp"
 #include "src/scene/load.hpp"
 #include "src/zbuffer/zbuffer_renderer.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/meshes.hpp"
+#include "tests/support/options.hpp"
+#include "tests/support/reference.hpp"
+#include "tests/support/render.hpp"
 
 namespace lzb {
 namespace {
@@ -31,12 +35,12 @@ namespace fs = std::filesystem;
 class SubpixelField : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const fs::path mesh = fs::path(LZB_DATA_DIR) / "armadillo.off";
-    if (!fs::exists(mesh)) return;
+    const std::string mesh = test::scannedMesh("armadillo.off");
+    if (mesh.empty()) return;
     // 1024 armadillos of 52 K triangles (53 M), most triangles far smaller than a pixel.
-    scene_ = new Scene(loadScene("builtin:replicated?mesh=" + mesh.string() + "&k=32&levels=1", true));
-    raycast_ = new RaycastRenderer(*scene_, options("raycast"));
-    reference_ = new ReferenceFrame(testing_util::renderReference(*raycast_, *scene_, camera()));
+    scene_ = new Scene(loadScene("builtin:replicated?mesh=" + mesh + "&k=32&levels=1", true));
+    raycast_ = new RaycastRenderer(*scene_, test::renderOptions("raycast", 2));
+    reference_ = new ReferenceFrame(test::renderReference(*raycast_, *scene_, camera()));
   }
   static void TearDownTestSuite() {
     delete reference_;
@@ -49,24 +53,7 @@ class SubpixelField : public ::testing::Test {
   void SetUp() override {
     if (!scene_) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
   }
-  static RenderOptions options(const std::string& method) {
-    RenderOptions o;
-    o.method = method;
-    o.threads = 2;
-    o.quiet = true;
-    return o;
-  }
-  static Camera camera() {
-    const CameraSpec base = scene_->camera ? *scene_->camera : frameBounds(scene_->bounds());
-    return Camera(withClipPlanes(base, scene_->bounds()), 320, 240);
-  }
-  static Framebuffer render(Renderer& r) {
-    const Camera cam = camera();
-    Framebuffer fb(cam.width(), cam.height());
-    FrameStats stats;
-    r.render(cam, 0, WorkShare{}, fb, stats);
-    return fb;
-  }
+  static Camera camera() { return test::sceneCamera(*scene_, 320, 240); }
   // The 17-sample figures and the witnessed ones of `image`; the witness only adds pixels.
   static Accuracy witnessed(const Framebuffer& image, const char* what) {
     const RayWitness witness(*scene_, raycast_->embreeScene(), camera());
@@ -96,10 +83,10 @@ RaycastRenderer* SubpixelField::raycast_ = nullptr;
 ReferenceFrame* SubpixelField::reference_ = nullptr;
 
 TEST_F(SubpixelField, TheWitnessProvesPixelsTheSeventeenSamplesMiss) {
-  ZBufferRenderer zbuffer(*scene_, options("zbuffer"));
-  const Accuracy z = witnessed(render(zbuffer), "zbuffer vs raycast");
-  rzb::RzbRenderer rzb(*scene_, options("rzb"), rzb::RzbParams{});
-  const Accuracy r = witnessed(render(rzb), "rzb d=1 vs raycast");
+  ZBufferRenderer zbuffer(*scene_, test::renderOptions("zbuffer", 2));
+  const Accuracy z = witnessed(test::renderFrame(zbuffer, camera()), "zbuffer vs raycast");
+  rzb::RzbRenderer rzb(*scene_, test::renderOptions("rzb", 2), rzb::RzbParams{});
+  const Accuracy r = witnessed(test::renderFrame(rzb, camera()), "rzb d=1 vs raycast");
   // On this field the 17 samples miss most of rzb's visible triangles: the witness matters.
   EXPECT_GT(r.witnessedPixels, r.coveredPixels / 2);
   EXPECT_GT(z.witnessedPixels, 0u);
@@ -108,8 +95,8 @@ TEST_F(SubpixelField, TheWitnessProvesPixelsTheSeventeenSamplesMiss) {
 // The metric is no rubber stamp: the z-buffer's image moved by 2 pixels shows triangles of the
 // wrong pixels, and few of them get a witness.
 TEST_F(SubpixelField, AShiftedImageIsMostlyWrongEvenWithWitnesses) {
-  ZBufferRenderer zbuffer(*scene_, options("zbuffer"));
-  const Framebuffer image = render(zbuffer);
+  ZBufferRenderer zbuffer(*scene_, test::renderOptions("zbuffer", 2));
+  const Framebuffer image = test::renderFrame(zbuffer, camera());
   Framebuffer shifted = image;
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x)

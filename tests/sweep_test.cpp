@@ -10,7 +10,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/cli_runner.hpp"
+#include "tests/support/cli_runner.hpp"
 
 namespace lzb::test {
 namespace {

@@ -4,18 +4,20 @@
 
 #include <gtest/gtest.h>
 
-#include "raycast/exact/raycast_test_util.hpp"
+#include "tests/support/brute_force.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/scenes.hpp"
 
 namespace lzb {
 namespace {
 
-using testing::BruteHit;
-using testing::WorldTriangle;
+using test::BruteHit;
+using test::WorldTriangle;
 
 // The known quad seen from a camera: hit iff the plane point lies in the quad, ID by the side of
 // the diagonal, depth the analytic view depth (t of origin + t * dir on z = 0).
 void checkQuad(const CameraSpec& spec) {
-  const Scene scene = testing::quadScene();
+  const Scene scene = test::quadScene();
   EmbreeScene embree(scene, {});
   const Camera cam(spec, 64, 48);
   int hits = 0;
@@ -61,7 +63,7 @@ TEST(EmbreeScene, KnownQuadOblique) {
 }
 
 TEST(EmbreeScene, NearAndFarPlanesClipByDepth) {
-  const Scene scene = testing::quadScene();
+  const Scene scene = test::quadScene();
   EmbreeScene embree(scene, {});
   const glm::dvec3 o(0.2, 0.3, 2.0), d(0.1, 0.05, -1.0);  // depth of the quad: exactly 2
   EXPECT_TRUE(embree.intersect(o, d, 1.999, 2.001).hit());
@@ -73,10 +75,10 @@ TEST(EmbreeScene, NearAndFarPlanesClipByDepth) {
 // Every hit names the triangle a double-precision brute force over the flattened scene finds;
 // where they differ the ray is a near tie or grazes an edge.
 void compareWithBruteForce(const Scene& scene, const EmbreeSceneOptions& options, int samples) {
-  const std::vector<WorldTriangle> tris = testing::worldTriangles(scene);
+  const std::vector<WorldTriangle> tris = test::worldTriangles(scene);
   ASSERT_EQ(tris.size(), scene.expandedTriangles());
   EmbreeScene embree(scene, options);
-  const Camera cam = testing::camera(scene, 320, 240);
+  const Camera cam = test::closeCamera(scene, 320, 240);
   std::mt19937_64 rng(11);
   // The middle of the image, where the triangles are (and gaps between them).
   std::uniform_real_distribution<double> px(0.25 * cam.width(), 0.75 * cam.width()),
@@ -85,8 +87,7 @@ void compareWithBruteForce(const Scene& scene, const EmbreeSceneOptions& options
   for (int i = 0; i < samples; ++i) {
     const glm::dvec3 d = cam.pixelDirection(px(rng), py(rng));
     const RayHit h = embree.intersect(cam.position(), d, cam.nearPlane(), cam.farPlane());
-    const BruteHit b =
-        testing::bruteForce(tris, cam.position(), d, cam.nearPlane(), cam.farPlane());
+    const BruteHit b = test::bruteForce(tris, cam.position(), d, cam.nearPlane(), cam.farPlane());
     if (h.hit()) {
       // The ID resolves to a stored triangle, placed where the brute force put it.
       const auto ref = scene.resolve(h.id);
@@ -94,7 +95,7 @@ void compareWithBruteForce(const Scene& scene, const EmbreeSceneOptions& options
       const Mesh& mesh = scene.nodes[ref->node].mesh;
       const glm::dvec3 v0(ref->transform *
                           glm::dvec4(glm::dvec3(mesh.vertex(ref->triangle, 0)), 1));
-      const WorldTriangle* tri = testing::findTriangle(tris, h.id);
+      const WorldTriangle* tri = test::findTriangle(tris, h.id);
       ASSERT_NE(tri, nullptr);
       EXPECT_EQ(v0, tri->a);
       ++hits;
@@ -108,7 +109,7 @@ void compareWithBruteForce(const Scene& scene, const EmbreeSceneOptions& options
     ++differ;
     if (h.hit() && b.id != kNoId) {
       const BruteHit mine =
-          testing::mollerTrumbore(*testing::findTriangle(tris, h.id), cam.position(), d);
+          test::mollerTrumbore(*test::findTriangle(tris, h.id), cam.position(), d);
       EXPECT_NEAR(mine.t, b.t, 1e-5 * b.t) << "not a tie at sample " << i;
       EXPECT_GT(mine.margin, -1e-5) << "ray passes outside the reported triangle, sample " << i;
     } else {
@@ -120,7 +121,7 @@ void compareWithBruteForce(const Scene& scene, const EmbreeSceneOptions& options
 }
 
 TEST(EmbreeScene, NestedInstancesMatchBruteForce) {
-  const Scene scene = testing::nestedScene();
+  const Scene scene = test::nestedScene();
   EmbreeScene embree(scene, {});
   EXPECT_EQ(embree.buildStats().levels, 4u);  // one per node, however often instanced
   EXPECT_EQ(embree.buildStats().instances, 10u);
@@ -131,7 +132,7 @@ TEST(EmbreeScene, NestedInstancesMatchBruteForce) {
 TEST(EmbreeScene, NestedInstancesMatchBruteForceMediumQuality) {
   EmbreeSceneOptions options;
   options.highQuality = false;
-  compareWithBruteForce(testing::nestedScene(3), options, 400);
+  compareWithBruteForce(test::nestedScene(3), options, 400);
 }
 
 // Packets (down through the instance levels) give exactly the single-ray hits.
@@ -158,15 +159,15 @@ void expectBatchEqualsSingle(const Scene& scene, const Camera& cam) {
 }
 
 TEST(EmbreeScene, BatchEqualsSingleRays) {
-  const Scene scene = testing::nestedScene();
-  expectBatchEqualsSingle(scene, testing::camera(scene, 40, 30));
+  const Scene scene = test::nestedScene();
+  expectBatchEqualsSingle(scene, test::closeCamera(scene, 40, 30));
 }
 
 // The nested scene seen through `cam`, and again 1e7 away (alone, and beside a copy at the
 // origin, which makes the root frame 1e7 wide): the same IDs and depths.
 void expectSameFarAway(const Scene& near, const Camera& cam, const glm::dvec3& shift,
                        bool withCopyAtOrigin) {
-  Scene far = testing::translated(near, shift);
+  Scene far = test::translated(near, shift);
   if (withCopyAtOrigin) {
     far.nodes[far.root].instances.push_back({near.root, glm::dmat4(1.0)});
     far.finalize();
@@ -197,8 +198,8 @@ void expectSameFarAway(const Scene& near, const Camera& cam, const glm::dvec3& s
 }
 
 TEST(EmbreeScene, FarFromOriginMatchesOrigin) {
-  const Scene near = testing::nestedScene();
-  CameraSpec spec = testing::closeSpec(near);
+  const Scene near = test::nestedScene();
+  CameraSpec spec = test::closeSpec(near);
   spec.position = spec.lookAt + 0.3 * (spec.position - spec.lookAt);  // closer still
   spec.nearPlane = 1e-3;
   const Camera cam(spec, 160, 120);
@@ -213,7 +214,7 @@ TEST(EmbreeScene, RootMeshFarFromOriginMatchesBruteForce) {
   scene.addNode("far mesh");
   std::mt19937_64 rng(5);
   Mesh local;
-  testing::addRandomTriangles(local, 200, 0.5, rng);
+  test::addRandomTriangles(local, 200, 0.5, rng);
   const glm::vec3 at(1.0e7f, 2.0e7f, -1.0e7f);
   for (size_t t = 0; t < local.size(); ++t)
     scene.nodes[0].mesh.add(at + 4.0f * local.vertex(t, 0), at + 4.0f * local.vertex(t, 1),
@@ -223,7 +224,7 @@ TEST(EmbreeScene, RootMeshFarFromOriginMatchesBruteForce) {
 }
 
 TEST(EmbreeScene, RaysThroughSharedEdgesDoNotLeak) {
-  const Scene scene = testing::quadScene();
+  const Scene scene = test::quadScene();
   EmbreeScene embree(scene, {});
   // Dyadic directions: in float the rays pass exactly through the diagonal (the last one lies in
   // the plane x = y that holds the edge, the others are axis-parallel or oblique).
@@ -247,7 +248,7 @@ TEST(EmbreeScene, RaysThroughASharedVertexDoNotLeak) {
   for (int i = 0; i < 8; ++i) {
     const double a0 = i * 0.7853981633974483, a1 = (i + 1) * 0.7853981633974483;
     scene.nodes[0].mesh.add({0, 0, 0}, {float(std::cos(a0)), float(std::sin(a0)), 0},
-                            {float(std::cos(a1)), float(std::sin(a1)), 0}, testing::grey(50));
+                            {float(std::cos(a1)), float(std::sin(a1)), 0}, test::grey(50));
   }
   scene.finalize();
   EmbreeScene embree(scene, {});
@@ -272,7 +273,7 @@ TEST(EmbreeScene, EmptySceneMissesEverything) {
 }
 
 TEST(EmbreeScene, SingularInstancesAreSkipped) {
-  Scene scene = testing::quadScene();
+  Scene scene = test::quadScene();
   const uint32_t root = scene.addNode("root");
   scene.nodes[root].instances.push_back({0, glm::dmat4(1.0)});
   scene.nodes[root].instances.push_back({0, glm::dmat4(0.0)});

@@ -8,8 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "raycast/exact/raycast_renderer.hpp"
-#include "raycast/exact/raycast_test_util.hpp"
 #include "src/core/system.hpp"
+#include "tests/support/scenes.hpp"
 
 namespace lzb {
 namespace {
@@ -54,7 +54,7 @@ TEST(RaycastBench, TriangleSoup2M) {
   Scene scene;
   scene.addNode("soup");
   std::mt19937_64 rng(1);
-  testing::addRandomTriangles(scene.nodes[0].mesh, 2'000'000, 0.01, rng);
+  test::addRandomTriangles(scene.nodes[0].mesh, 2'000'000, 0.01, rng);
   scene.finalize();
   CameraSpec spec = frameBounds(scene.bounds());
   spec.position = spec.lookAt + 0.45 * (spec.position - spec.lookAt);  // the soup fills the view

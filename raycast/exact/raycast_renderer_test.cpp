@@ -2,21 +2,15 @@
 
 #include <gtest/gtest.h>
 
-#include "raycast/exact/raycast_test_util.hpp"
 #include "mpi/decomposition.hpp"
 #include "src/core/shading.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/options.hpp"
+#include "tests/support/render.hpp"
+#include "tests/support/scenes.hpp"
 
 namespace lzb {
 namespace {
-
-Framebuffer render(RaycastRenderer& r, const Camera& cam, WorkShare share = {},
-                   FrameStats* statsOut = nullptr) {
-  Framebuffer fb(cam.width(), cam.height());
-  FrameStats stats;
-  r.render(cam, 0, share, fb, stats);
-  if (statsOut) *statsOut = stats;
-  return fb;
-}
 
 void expectSame(const Framebuffer& a, const Framebuffer& b) {
   ASSERT_EQ(a.size(), b.size());
@@ -26,19 +20,12 @@ void expectSame(const Framebuffer& a, const Framebuffer& b) {
   EXPECT_EQ(differ, 0u);
 }
 
-RenderOptions options(int threads) {
-  RenderOptions o;
-  o.method = "raycast";
-  o.threads = threads;
-  return o;
-}
-
 TEST(RaycastRenderer, PixelsAreCentreRaysAndColourIsLeftToTheDriver) {
-  const Scene scene = testing::nestedScene();
-  RaycastRenderer r(scene, options(2));
-  const Camera cam = testing::camera(scene, 70, 50);
+  const Scene scene = test::nestedScene();
+  RaycastRenderer r(scene, test::renderOptions("raycast", 2));
+  const Camera cam = test::closeCamera(scene, 70, 50);
   FrameStats stats;
-  const Framebuffer fb = render(r, cam, {}, &stats);
+  const Framebuffer fb = test::renderFrame(r, cam, &stats);
   EmbreeScene embree(scene, {});
   size_t covered = 0;
   for (int y = 0; y < cam.height(); ++y)
@@ -68,16 +55,16 @@ TEST(RaycastRenderer, PixelsAreCentreRaysAndColourIsLeftToTheDriver) {
 }
 
 TEST(RaycastRenderer, RanksCompositeToTheSingleImage) {
-  const Scene scene = testing::nestedScene();
-  RaycastRenderer r(scene, options(2));
-  const Camera cam = testing::camera(scene, 100, 70);  // partial tiles on both edges
-  const Framebuffer single = render(r, cam);
+  const Scene scene = test::nestedScene();
+  RaycastRenderer r(scene, test::renderOptions("raycast", 2));
+  const Camera cam = test::closeCamera(scene, 100, 70);  // partial tiles on both edges
+  const Framebuffer single = test::renderFrame(r, cam);
   for (int size : {2, 3}) {
     Framebuffer composite(cam.width(), cam.height());
     const ScreenTiles tiles(cam.width(), cam.height());
     for (int rank = 0; rank < size; ++rank) {
       FrameStats stats;
-      const Framebuffer part = render(r, cam, {rank, size}, &stats);
+      const Framebuffer part = test::renderFrame(r, cam, &stats, {rank, size});
       // Only this rank's tiles were traced.
       size_t mine = 0;
       for (int t = 0; t < tiles.count(); ++t) {
@@ -97,29 +84,29 @@ TEST(RaycastRenderer, RanksCompositeToTheSingleImage) {
 }
 
 TEST(RaycastRenderer, SameImageForAnyThreadCountAndRayMode) {
-  const Scene scene = testing::nestedScene(9);
-  const Camera cam = testing::camera(scene, 90, 64);
-  RaycastRenderer one(scene, options(1));
-  RaycastRenderer two(scene, options(2));
+  const Scene scene = test::nestedScene(9);
+  const Camera cam = test::closeCamera(scene, 90, 64);
+  RaycastRenderer one(scene, test::renderOptions("raycast", 1));
+  RaycastRenderer two(scene, test::renderOptions("raycast", 2));
   RaycastTuning single;
   single.packets = false;
-  RaycastRenderer scalar(scene, options(2), single);
-  const Framebuffer reference = render(one, cam);
+  RaycastRenderer scalar(scene, test::renderOptions("raycast", 2), single);
+  const Framebuffer reference = test::renderFrame(one, cam);
   EXPECT_GT(reference.coveredCount(), 500u);
-  expectSame(render(two, cam), reference);
-  expectSame(render(scalar, cam), reference);
+  expectSame(test::renderFrame(two, cam), reference);
+  expectSame(test::renderFrame(scalar, cam), reference);
 }
 
 TEST(RaycastRenderer, FramesDoNotDependOnEarlierFrames) {
   // Rendering frame b after frame a gives what a fresh renderer gives for b.
-  const Scene scene = testing::translated(testing::nestedScene(), {3e6, 1e6, -2e6});
-  const CameraSpec base = testing::closeSpec(scene);
-  RaycastRenderer r(scene, options(2));
-  render(r, Camera(pathCamera(scene, base, 0, 4), 64, 48));
+  const Scene scene = test::translated(test::nestedScene(), {3e6, 1e6, -2e6});
+  const CameraSpec base = test::closeSpec(scene);
+  RaycastRenderer r(scene, test::renderOptions("raycast", 2));
+  test::renderFrame(r, Camera(pathCamera(scene, base, 0, 4), 64, 48));
   const Camera b(pathCamera(scene, base, 1, 4), 64, 48);
-  const Framebuffer after = render(r, b);
-  RaycastRenderer fresh(scene, options(2));
-  expectSame(after, render(fresh, b));
+  const Framebuffer after = test::renderFrame(r, b);
+  RaycastRenderer fresh(scene, test::renderOptions("raycast", 2));
+  expectSame(after, test::renderFrame(fresh, b));
   EXPECT_GT(after.coveredCount(), 300u);
 }
 

@@ -23,11 +23,16 @@
 
 #include <gtest/gtest.h>
 
-#include "raycast/lzb/lzb_test_util.hpp"
 #include "raycast/exact/raycast_renderer.hpp"
+#include "raycast/lzb/lzb_renderer.hpp"
 #include "src/core/shading.hpp"
 #include "src/core/statistics.hpp"
 #include "src/core/timer.hpp"
+#include "src/image/metrics.hpp"
+#include "src/scene/load.hpp"
+#include "src/zbuffer/zbuffer_renderer.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/options.hpp"
 
 namespace lzb::localz {
 namespace {
@@ -85,13 +90,13 @@ TEST(LzbBench, StagesAgainstRaycastAndLimits) {
   const Scene scene = loadScene(source, true);
   LzbOptions options;
   options.farRays = parseFarRays(envString("LZB_BENCH_RAYS", "embree"), "LZB_BENCH_RAYS");
-  LzbRenderer lzb(scene, testing::lzbRenderOptions(threads), options);
-  RaycastRenderer raycast(scene, testing::lzbRenderOptions(threads));
+  LzbRenderer lzb(scene, test::renderOptions("lzb", threads), options);
+  RaycastRenderer raycast(scene, test::renderOptions("lzb", threads));
   Framebuffer a(width, height), b(width, height);
   Samples s{size_t(frames)};
   for (int round = 0; round < rounds; ++round)
     for (int f = 0; f < frames; ++f) {
-      const Camera cam = testing::pathFrame(scene, f, frames, width, height);
+      const Camera cam = test::pathFrame(scene, f, frames, width, height);
       auto& out = s[size_t(f)];
       FrameStats ls, rs;
       Stopwatch clock;

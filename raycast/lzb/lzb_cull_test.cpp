@@ -7,12 +7,16 @@
 #include <utility>
 #include <vector>
 
-#include "raycast/lzb/lzb_test_util.hpp"
+#include "raycast/lzb/lzb_renderer.hpp"
+#include "src/image/metrics.hpp"
+#include "src/scene/load.hpp"
+#include "src/zbuffer/zbuffer_renderer.hpp"
+#include "tests/support/cameras.hpp"
 
 namespace lzb::localz {
 namespace {
 
-using testing::pathFrame;
+using test::pathFrame;
 
 // The root's instances are culled in parallel; the parts are joined in instance order, so any
 // thread count lists the same paths and leaves in the same order.

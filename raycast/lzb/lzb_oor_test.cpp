@@ -6,7 +6,8 @@
 #include <random>
 
 #include "raycast/lzb/lzb_cull.hpp"
-#include "raycast/exact/raycast_test_util.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/scenes.hpp"
 
 namespace lzb::localz {
 namespace {
@@ -51,16 +52,16 @@ void expectConservative(const Scene& scene, const Camera& cam, double clip, int*
 }
 
 TEST(OorProjection, PolygonsHoldEveryFarPointOfTheirBoxes) {
-  const Scene scene = testing::nestedScene(5);  // rotated and scaled instance frames
-  const Camera cam = testing::camera(scene, 160, 120);
+  const Scene scene = test::nestedScene(5);  // rotated and scaled instance frames
+  const Camera cam = test::closeCamera(scene, 160, 120);
   int clipped = 0;
   expectConservative(scene, cam, cam.viewDepth(scene.bounds().center()), &clipped);
   EXPECT_GT(clipped, 0);  // some boxes straddle the plane and are cut at it
 }
 
 TEST(OorProjection, CameraInsideTheBoxesIsClippedNotWholeScreen) {
-  Scene scene = testing::nestedScene(6);
-  CameraSpec spec = testing::closeSpec(scene);
+  Scene scene = test::nestedScene(6);
+  CameraSpec spec = test::closeSpec(scene);
   spec.position = scene.bounds().center();  // inside the octree and inside leaves
   spec.lookAt = spec.position + glm::dvec3(1.0, 0.2, 0.1);
   spec.nearPlane = 1e-3;
@@ -84,8 +85,8 @@ TEST(OorProjection, ContainsUsesTheHullNotJustTheBox) {
 }
 
 TEST(OorObjects, BinsCoverEveryPolygonPixel) {
-  const Scene scene = testing::nestedScene(7);
-  const Camera cam = testing::camera(scene, 100, 70);  // partial tiles at the edges
+  const Scene scene = test::nestedScene(7);
+  const Camera cam = test::closeCamera(scene, 100, 70);  // partial tiles at the edges
   const LzbAccel accel(scene, LzbAccelParams{});
   const CulledScene culled = cullScene(accel, cam);
   const ScreenTiles tiles(cam.width(), cam.height());

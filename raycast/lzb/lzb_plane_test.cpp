@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "raycast/lzb/lzb_triangle_set.hpp"
-#include "raycast/exact/raycast_test_util.hpp"
+#include "tests/support/scenes.hpp"
 
 namespace lzb::localz {
 namespace {
@@ -20,7 +20,7 @@ Camera headOn(double d, double x = 0.0, double turn = 0.0, bool away = false) {
 }
 
 TEST(PartitionPlane, DynamicIsTheMeanDepthOfTheCoarseHits) {
-  const Scene scene = testing::quadScene();
+  const Scene scene = test::quadScene();
   const EmbreeScene embree(scene, {});
   const PlaneDecision d = PartitionPlane::coarseRayCast(embree, headOn(4.0), 8);
   EXPECT_EQ(d.coarseRays, 64u);
@@ -34,7 +34,7 @@ TEST(PartitionPlane, DynamicIsTheMeanDepthOfTheCoarseHits) {
 }
 
 TEST(PartitionPlane, CoarseRaysGiveTheSameHitsOnAnyThreadCount) {
-  const Scene scene = testing::quadScene();
+  const Scene scene = test::quadScene();
   const EmbreeScene embree(scene, {});
   // 40 x 40 rays: several blocks of the parallel loop, the last one partial.
   std::vector<double> one, two;
@@ -48,7 +48,7 @@ TEST(PartitionPlane, CoarseRaysGiveTheSameHitsOnAnyThreadCount) {
 }
 
 TEST(PartitionPlane, StaticIsAFractionOfTheFrustumDepth) {
-  const Scene scene = testing::quadScene();
+  const Scene scene = test::quadScene();
   const EmbreeScene embree(scene, {});
   LzbOptions o;
   o.planeFraction = 0.25;
@@ -60,7 +60,7 @@ TEST(PartitionPlane, StaticIsAFractionOfTheFrustumDepth) {
 }
 
 TEST(PartitionPlane, ReusedWhileTheViewStaysCloseThenRecomputed) {
-  const Scene scene = testing::quadScene();
+  const Scene scene = test::quadScene();
   const EmbreeScene embree(scene, {});
   LzbOptions o;
   o.planeReuse = 3;
@@ -90,7 +90,7 @@ TEST(PartitionPlane, ReusedWhileTheViewStaysCloseThenRecomputed) {
 }
 
 TEST(PartitionPlane, MoreUnfinishedPixelsInvalidateThePlane) {
-  const Scene scene = testing::quadScene();
+  const Scene scene = test::quadScene();
   const EmbreeScene embree(scene, {});
   PartitionPlane plane(LzbOptions{});
   plane.place(embree, headOn(2.0));
@@ -103,7 +103,7 @@ TEST(PartitionPlane, MoreUnfinishedPixelsInvalidateThePlane) {
 }
 
 TEST(PartitionPlane, NeverReusedWithReuseZero) {
-  const Scene scene = testing::quadScene();
+  const Scene scene = test::quadScene();
   const EmbreeScene embree(scene, {});
   LzbOptions o;
   o.planeReuse = 0;
@@ -152,7 +152,7 @@ TEST(PartitionPlane, CostPlaneIsTheSameOnAnyThreadCount) {
 }
 
 TEST(PartitionPlane, CostModeIsDynamicAndReusable) {
-  const Scene scene = testing::quadScene();
+  const Scene scene = test::quadScene();
   const EmbreeScene embree(scene, {});
   LzbOptions o;
   o.costPlane = true;
@@ -166,7 +166,7 @@ TEST(PartitionPlane, CostModeIsDynamicAndReusable) {
 }
 
 TEST(PartitionPlane, TakesCoarseRaysAlreadyCastForTheSameCamera) {
-  const Scene scene = testing::quadScene();
+  const Scene scene = test::quadScene();
   const EmbreeScene embree(scene, {});
   for (const bool cost : {false, true}) {
     LzbOptions o;

@@ -7,7 +7,9 @@
 #include "raycast/lzb/lzb_accel.hpp"
 #include "raycast/lzb/lzb_draw_lists.hpp"
 #include "raycast/lzb/lzb_octree_ropes.hpp"
-#include "raycast/exact/raycast_test_util.hpp"
+#include "tests/support/brute_force.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/scenes.hpp"
 
 namespace lzb::localz {
 namespace {
@@ -21,7 +23,7 @@ Scene soupScene(size_t triangles, uint64_t seed) {
   Scene s;
   s.source = "soup";
   s.addNode("soup");
-  testing::addRandomTriangles(s.nodes[0].mesh, triangles, 0.25, rng);
+  test::addRandomTriangles(s.nodes[0].mesh, triangles, 0.25, rng);
   s.finalize();
   return s;
 }
@@ -92,7 +94,7 @@ TEST(OctreeRopes, LocateFromAnyHintEqualsDescentFromTheRoot) {
 void expectPvlHoldsHits(const Scene& scene, const std::vector<glm::dvec3>& origins,
                         const std::vector<glm::dvec3>& dirs, double tMin) {
   const LzbAccel accel(scene, smallLeaves());
-  const auto tris = testing::worldTriangles(scene);
+  const auto tris = test::worldTriangles(scene);
   for (LeafTest test : kTests)
     for (OctreeWalk walk : kWalks) {
       RayWalker walker(accel, test, walk);
@@ -101,7 +103,7 @@ void expectPvlHoldsHits(const Scene& scene, const std::vector<glm::dvec3>& origi
         PvlPart part;
         const double t = walker.cast(origins[i], dirs[i], tMin, 1e9, part);
         part.finish();
-        const testing::BruteHit exact = testing::bruteForce(tris, origins[i], dirs[i], tMin, 1e9);
+        const test::BruteHit exact = test::bruteForce(tris, origins[i], dirs[i], tMin, 1e9);
         if (exact.id == kNoId) continue;
         if (exact.margin < 1e-9) continue;  // on an edge: either triangle is right
         // The walk's hit is a real one, so never nearer than the nearest.
@@ -128,8 +130,8 @@ TEST(RayWalker, PvlHoldsTheExactHitOnATriangleSoup) {
 }
 
 TEST(RayWalker, PvlHoldsTheExactHitThroughNestedInstances) {
-  const Scene scene = testing::nestedScene(11);  // rotated, non-uniformly scaled, 3 levels
-  const Camera cam = testing::camera(scene, 40, 30);
+  const Scene scene = test::nestedScene(11);  // rotated, non-uniformly scaled, 3 levels
+  const Camera cam = test::closeCamera(scene, 40, 30);
   std::vector<glm::dvec3> origins, dirs;
   for (int y = 0; y < cam.height(); ++y)
     for (int x = 0; x < cam.width(); ++x) {
@@ -162,9 +164,9 @@ TEST(RayWalker, RaysAlongOctreePlanes) {
 }
 
 TEST(RayWalker, CoherentAndTopDownRecordTheSameLeaves) {
-  const Scene scene = testing::nestedScene(12);
+  const Scene scene = test::nestedScene(12);
   const LzbAccel accel(scene, smallLeaves());
-  const Camera cam = testing::camera(scene, 48, 36);
+  const Camera cam = test::closeCamera(scene, 48, 36);
   for (LeafTest test : kTests) {
     RayWalker top(accel, test, OctreeWalk::kTopDown), coherent(accel, test, OctreeWalk::kCoherent);
     PvlPart a, b;

@@ -10,16 +10,21 @@
 
 #include "mpi/decomposition.hpp"
 #include "raycast/exact/embree_scene.hpp"
-#include "raycast/lzb/lzb_test_util.hpp"
 #include "raycast/exact/raycast_renderer.hpp"
-#include "raycast/exact/raycast_test_util.hpp"
+#include "src/image/metrics.hpp"
+#include "src/scene/load.hpp"
+#include "src/zbuffer/zbuffer_renderer.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/meshes.hpp"
+#include "tests/support/options.hpp"
+#include "tests/support/reference.hpp"
+#include "tests/support/render.hpp"
+#include "tests/support/scenes.hpp"
 
 namespace lzb::localz {
 namespace {
 
-using testing::pathFrame;
-using testing::renderFrame;
-using testing::stageOptions;
+using test::pathFrame;
 
 constexpr LzbStage kStages[] = {LzbStage::kNaive, LzbStage::kLazy, LzbStage::kSelective,
                                 LzbStage::kOor, LzbStage::kFinal};
@@ -48,19 +53,19 @@ long missingFromPvl(const LzbRenderer& r, const EmbreeScene& embree, const Camer
 void expectMatchesZBuffer(const Scene& scene, int w, int h, std::initializer_list<int> frames,
                           std::vector<LzbStage> stages = {std::begin(kStages), std::end(kStages)},
                           LzbOptions base = {}) {
-  ZBufferRenderer zbuffer(scene, testing::lzbRenderOptions());
-  RaycastRenderer raycast(scene, testing::lzbRenderOptions());
+  ZBufferRenderer zbuffer(scene, test::renderOptions("lzb", 2));
+  RaycastRenderer raycast(scene, test::renderOptions("lzb", 2));
   const EmbreeScene embree(scene, {});
   for (LzbStage stage : stages) {
     LzbOptions o = base;
     o.stage = stage;
-    LzbRenderer r(scene, testing::lzbRenderOptions(), o);
+    LzbRenderer r(scene, test::renderOptions("lzb", 2), o);
     Renderer& exact = stage == LzbStage::kNaive ? static_cast<Renderer&>(raycast) : zbuffer;
     uint64_t cast = 0;
     for (int f : frames) {
       const Camera cam = pathFrame(scene, f, 4, w, h);
-      const ReferenceFrame ref = testing_util::renderReference(exact, scene, cam);
-      const Framebuffer img = renderFrame(r, cam);
+      const ReferenceFrame ref = test::renderReference(exact, scene, cam);
+      const Framebuffer img = test::renderFrame(r, cam);
       const Accuracy a = compare(img, ref);
       EXPECT_GE(a.correctRateCovered, 0.999) << scene.source << " " << toString(stage) << " " << f;
       EXPECT_GE(a.exactIdRateCovered, 0.999) << scene.source << " " << toString(stage) << " " << f;
@@ -113,7 +118,7 @@ TEST(LzbRenderer, EveryStageMatchesZBufferOnInstancedScenes) {
   for (ZBuffers z : kZBuffers) {
     SCOPED_TRACE(toString(z));
     const std::vector<LzbStage> all(std::begin(kStages), std::end(kStages));
-    expectMatchesZBuffer(testing::nestedScene(21), 160, 120, {0, 2}, all, zbufferOptions(z));
+    expectMatchesZBuffer(test::nestedScene(21), 160, 120, {0, 2}, all, zbufferOptions(z));
     expectMatchesZBuffer(loadScene("builtin:sphereflake?depth=2", true), 160, 120, {0, 1}, all,
                          zbufferOptions(z));
   }
@@ -131,11 +136,11 @@ TEST(LzbRenderer, NativeAndGlZBuffersAgree) {
     LzbOptions nativeOptions = zbufferOptions(kZBuffers[0]),
                glOptions = zbufferOptions(kZBuffers[3]);
     nativeOptions.planeFraction = glOptions.planeFraction = 0.6;
-    LzbRenderer native(scene, testing::lzbRenderOptions(), nativeOptions);
-    LzbRenderer gl(scene, testing::lzbRenderOptions(), glOptions);
+    LzbRenderer native(scene, test::renderOptions("lzb", 2), nativeOptions);
+    LzbRenderer gl(scene, test::renderOptions("lzb", 2), glOptions);
     native.keepNearPass(true);
     gl.keepNearPass(true);
-    const Framebuffer a = renderFrame(native, cam), b = renderFrame(gl, cam);
+    const Framebuffer a = test::renderFrame(native, cam), b = test::renderFrame(gl, cam);
     const Framebuffer &nearA = native.lastFrame().nearPass, &nearB = gl.lastFrame().nearPass;
     ASSERT_GT(nearB.coveredCount(), 0u) << f << ": no near scene to compare";
     nearCovered += nearB.coveredCount();
@@ -178,7 +183,7 @@ TEST(LzbRenderer, PvlStagesMatchZBufferOnAForest) {
 }
 
 TEST(LzbRenderer, EveryStageMatchesZBufferOnAScannedMesh) {
-  const std::string bunny = testing::scannedMesh("bunny00.off");
+  const std::string bunny = test::scannedMesh("bunny00.off");
   if (bunny.empty()) GTEST_SKIP() << "bunny00.off unavailable (scripts/fetch-test-meshes.sh)";
   expectMatchesZBuffer(loadScene(bunny, true), 160, 120, {0, 1});
 }
@@ -191,7 +196,7 @@ TEST(LzbRenderer, WalkedRaysMatchZBuffer) {
   const std::vector<LzbStage> pvl = {LzbStage::kLazy, LzbStage::kSelective, LzbStage::kOor,
                                      LzbStage::kFinal};
   expectMatchesZBuffer(loadScene("builtin:city?blocks=4", true), 192, 144, {0, 1}, pvl, walk);
-  expectMatchesZBuffer(testing::nestedScene(21), 160, 120, {0, 2}, pvl, walk);
+  expectMatchesZBuffer(test::nestedScene(21), 160, 120, {0, 2}, pvl, walk);
   expectMatchesZBuffer(loadScene("builtin:sphereflake?depth=2", true), 160, 120, {0, 1}, pvl, walk);
   expectMatchesZBuffer(loadScene("builtin:forest?trees=6&levels=1", true), 160, 120, {0}, pvl,
                        walk);
@@ -201,15 +206,15 @@ TEST(LzbRenderer, StaticOccluderSettingsStayExact) {
   const Scene scene = loadScene("builtin:city?blocks=3", true);
   for (OccluderMode mode : {OccluderMode::kStatic, OccluderMode::kDynamic})
     for (int k : {0, 1, 10}) {
-      LzbOptions o = stageOptions(LzbStage::kSelective);
+      LzbOptions o = test::lzbStageOptions(LzbStage::kSelective);
       o.farRays = FarRays::kWalk;  // occluders act in the walk only
       o.occluderMode = mode;
       o.occluders = k;
-      ZBufferRenderer zbuffer(scene, testing::lzbRenderOptions());
-      LzbRenderer r(scene, testing::lzbRenderOptions(), o);
+      ZBufferRenderer zbuffer(scene, test::renderOptions("lzb", 2));
+      LzbRenderer r(scene, test::renderOptions("lzb", 2), o);
       const Camera cam = pathFrame(scene, 0, 4, 128, 96);
       const Accuracy a =
-          compare(renderFrame(r, cam), testing_util::renderReference(zbuffer, scene, cam));
+          compare(test::renderFrame(r, cam), test::renderReference(zbuffer, scene, cam));
       EXPECT_GE(a.exactIdRateCovered, 0.999) << toString(mode) << " K=" << k;
     }
 }
@@ -218,35 +223,34 @@ TEST(LzbRenderer, PlaneInFrontOfEverything) {
   const Scene scene = loadScene("builtin:city?blocks=3", true);
   LzbOptions o;
   o.planeFraction = 1e-9;  // at the near plane: no near scene, every covered pixel is ray cast
-  LzbRenderer r(scene, testing::lzbRenderOptions(), o);
+  LzbRenderer r(scene, test::renderOptions("lzb", 2), o);
   r.keepNearPass(true);
-  ZBufferRenderer zbuffer(scene, testing::lzbRenderOptions());
+  ZBufferRenderer zbuffer(scene, test::renderOptions("lzb", 2));
   const Camera cam = pathFrame(scene, 0, 4, 128, 96);
   FrameStats stats;
-  const Framebuffer img = renderFrame(r, cam, {}, &stats);
+  const Framebuffer img = test::renderFrame(r, cam, &stats);
   EXPECT_EQ(r.lastFrame().nearPass.size(), img.size());
   EXPECT_EQ(r.lastFrame().nearPass.coveredCount(), 0u);
   EXPECT_EQ(stats.shared.value("unfinished_pixels", 0.0), 128.0 * 96.0);
-  EXPECT_GE(compare(img, testing_util::renderReference(zbuffer, scene, cam)).exactIdRateCovered,
-            0.999);
+  EXPECT_GE(compare(img, test::renderReference(zbuffer, scene, cam)).exactIdRateCovered, 0.999);
 }
 
 TEST(LzbRenderer, PlaneBehindEverythingLeavesAnEmptyFarScene) {
   const Scene scene = loadScene("builtin:city?blocks=3", true);
   LzbOptions o;
   o.planeFraction = 0.999;
-  LzbRenderer r(scene, testing::lzbRenderOptions(), o);
-  ZBufferRenderer zbuffer(scene, testing::lzbRenderOptions());
+  LzbRenderer r(scene, test::renderOptions("lzb", 2), o);
+  ZBufferRenderer zbuffer(scene, test::renderOptions("lzb", 2));
   // From above and outside: everything lies in front of 0.999 of the frustum depth.
   CameraSpec spec = frameBounds(scene.bounds());
   spec.farPlane *= 2.0;
   const Camera cam(spec, 128, 96);
   FrameStats stats;
-  const Framebuffer img = renderFrame(r, cam, {}, &stats);
+  const Framebuffer img = test::renderFrame(r, cam, &stats);
   EXPECT_EQ(stats.shared.value("far_triangles", -1.0), 0.0);
   EXPECT_EQ(r.lastFrame().pvl.triangles, 0u);
   EXPECT_GT(stats.shared.value("unfinished_pixels", 0.0), 0.0);  // sky: cast, nothing found
-  const Framebuffer ref = renderFrame(zbuffer, cam);
+  const Framebuffer ref = test::renderFrame(zbuffer, cam);
   EXPECT_EQ(img.id, ref.id);  // the near pass alone is the z-buffer image
 }
 
@@ -288,19 +292,20 @@ TEST(LzbRenderer, RaysParallelToOctreePlanes) {
   const Camera cam(spec, 101, 75);  // odd sizes: the centre rays are exactly axis-parallel
   ASSERT_EQ(cam.pixelDirection(50.5, 10.5).x, 0.0);
   ASSERT_EQ(cam.pixelDirection(10.5, 37.5).y, 0.0);
-  ZBufferRenderer zbuffer(scene, testing::lzbRenderOptions());
-  RaycastRenderer raycast(scene, testing::lzbRenderOptions());
+  ZBufferRenderer zbuffer(scene, test::renderOptions("lzb", 2));
+  RaycastRenderer raycast(scene, test::renderOptions("lzb", 2));
   const EmbreeScene embree(scene, {});
-  const Framebuffer ref = renderFrame(zbuffer, cam);
-  const ReferenceFrame exact = reduceReference(ref, renderFrame(zbuffer, subsampleCamera(cam)));
-  const Framebuffer rays = renderFrame(raycast, cam);
+  const Framebuffer ref = test::renderFrame(zbuffer, cam);
+  const ReferenceFrame exact =
+      reduceReference(ref, test::renderFrame(zbuffer, subsampleCamera(cam)));
+  const Framebuffer rays = test::renderFrame(raycast, cam);
   for (LzbStage stage : kStages)
     for (FarRays farRays : {FarRays::kEmbree, FarRays::kWalk}) {
-      LzbOptions o = stageOptions(stage);
+      LzbOptions o = test::lzbStageOptions(stage);
       o.planeFraction = 1e-9;  // everything through the rays
       o.farRays = farRays;
-      LzbRenderer r(scene, testing::lzbRenderOptions(), o);
-      const Framebuffer img = renderFrame(r, cam);
+      LzbRenderer r(scene, test::renderOptions("lzb", 2), o);
+      const Framebuffer img = test::renderFrame(r, cam);
       SCOPED_TRACE(toString(farRays));
       if (stage == LzbStage::kNaive) {
         // Naive is Embree behind the plane, i.e. everywhere here: the ray caster's image. (On the
@@ -326,13 +331,13 @@ TEST(LzbRenderer, SameImageForAnyRankAndThreadCount) {
     for (LzbStage stage : {LzbStage::kNaive, LzbStage::kLazy, LzbStage::kFinal}) {
       if (stage == LzbStage::kNaive && z.pvl == ZBufferKind::kGl) continue;  // no PVL
       SCOPED_TRACE(toString(z));
-      LzbOptions o = stageOptions(stage);
+      LzbOptions o = test::lzbStageOptions(stage);
       o.nearRender = z.near;
       o.pvlRender = z.pvl;
-      LzbRenderer one(scene, testing::lzbRenderOptions(1), o);
-      LzbRenderer two(scene, testing::lzbRenderOptions(2), o);
-      const Framebuffer single = renderFrame(one, cam);
-      const Framebuffer threads = renderFrame(two, cam);
+      LzbRenderer one(scene, test::renderOptions("lzb", 1), o);
+      LzbRenderer two(scene, test::renderOptions("lzb", 2), o);
+      const Framebuffer single = test::renderFrame(one, cam);
+      const Framebuffer threads = test::renderFrame(two, cam);
       EXPECT_EQ(threads.id, single.id) << toString(stage);
       EXPECT_EQ(threads.depth, single.depth) << toString(stage);
       for (int size : {2, 3})
@@ -340,12 +345,12 @@ TEST(LzbRenderer, SameImageForAnyRankAndThreadCount) {
           SCOPED_TRACE(toString(deal));
           LzbOptions dealt = o;
           dealt.tileDeal = deal;
-          LzbRenderer ranks(scene, testing::lzbRenderOptions(2), dealt);
+          LzbRenderer ranks(scene, test::renderOptions("lzb", 2), dealt);
           Framebuffer composite(cam.width(), cam.height());
           double rays = 0.0;
           for (int rank = 0; rank < size; ++rank) {
             FrameStats stats;
-            compositeNearer(composite, renderFrame(ranks, cam, {rank, size}, &stats));
+            compositeNearer(composite, test::renderFrame(ranks, cam, &stats, {rank, size}));
             const double mine = stats.counts.value("rays_cast", 0.0);
             EXPECT_GT(mine, 0.0) << "rank " << rank << " of " << size << " casts a share";
             rays += mine;
@@ -357,7 +362,7 @@ TEST(LzbRenderer, SameImageForAnyRankAndThreadCount) {
           EXPECT_EQ(composite.depth, single.depth)
               << toString(stage) << " on " << size << " ranks";
           FrameStats alone;
-          renderFrame(one, cam, {}, &alone);
+          test::renderFrame(one, cam, &alone);
           EXPECT_EQ(rays, alone.counts.value("rays_cast", -1.0));
         }
     }
@@ -369,9 +374,9 @@ TEST(LzbRenderer, SameImageForAnyRankAndThreadCount) {
 TEST(LzbRenderer, RanksRenderingAtOnceSplitTheNearPass) {
   const Scene scene = loadScene("builtin:city?blocks=3", true);
   const Camera cam = pathFrame(scene, 0, 4, 100, 70);
-  LzbRenderer one(scene, testing::lzbRenderOptions(1), LzbOptions{});
+  LzbRenderer one(scene, test::renderOptions("lzb", 1), LzbOptions{});
   FrameStats alone;
-  const Framebuffer single = renderFrame(one, cam, {}, &alone);
+  const Framebuffer single = test::renderFrame(one, cam, &alone);
   const double nearTotal = alone.shared.value("near_triangles", 0.0);
   ASSERT_GT(nearTotal, 1000.0) << "the view needs a near pass worth splitting";
   EXPECT_EQ(alone.counts.value("near_triangles_drawn", -1.0), nearTotal);
@@ -380,7 +385,7 @@ TEST(LzbRenderer, RanksRenderingAtOnceSplitTheNearPass) {
     std::vector<std::unique_ptr<LzbRenderer>> ranks;
     for (int r = 0; r < size; ++r)
       ranks.push_back(
-          std::make_unique<LzbRenderer>(scene, testing::lzbRenderOptions(1), LzbOptions{}));
+          std::make_unique<LzbRenderer>(scene, test::renderOptions("lzb", 1), LzbOptions{}));
     std::vector<std::vector<uint64_t>> posted(size_t(size), std::vector<uint64_t>{});
     std::barrier sync(size);
     std::vector<Framebuffer> fbs(static_cast<size_t>(size));
@@ -396,7 +401,7 @@ TEST(LzbRenderer, RanksRenderingAtOnceSplitTheNearPass) {
             for (size_t w = 0; w < words.size(); ++w) words[w] |= other[w];
           sync.arrive_and_wait();  // every rank has read every post before the next one
         };
-        fbs[size_t(r)] = renderFrame(*ranks[size_t(r)], cam, share, &stats[size_t(r)]);
+        fbs[size_t(r)] = test::renderFrame(*ranks[size_t(r)], cam, &stats[size_t(r)], share);
       });
     for (std::thread& t : threads) t.join();
     Framebuffer composite(cam.width(), cam.height());
@@ -419,11 +424,11 @@ TEST(LzbRenderer, RanksRenderingAtOnceSplitTheNearPass) {
 
 TEST(LzbRenderer, ReportsStagesAndCounts) {
   const Scene scene = loadScene("builtin:city?blocks=3", true);
-  LzbRenderer r(scene, testing::lzbRenderOptions(), LzbOptions{});
+  LzbRenderer r(scene, test::renderOptions("lzb", 2), LzbOptions{});
   const Camera cam = pathFrame(scene, 0, 4, 96, 64);
   FrameStats first, second;
-  renderFrame(r, cam, {}, &first);
-  renderFrame(r, cam, {}, &second);
+  test::renderFrame(r, cam, &first);
+  test::renderFrame(r, cam, &second);
   std::vector<std::string> names;
   for (const auto& [name, s] : second.stageSeconds) names.push_back(name);
   const std::vector<std::string> expected = {"cull",        "plane",    "near",      "unfinished",
@@ -443,9 +448,9 @@ TEST(LzbRenderer, ReportsStagesAndCounts) {
   EXPECT_FALSE(second.counts.contains("ray_triangle_tests"));
   LzbOptions walking;
   walking.farRays = FarRays::kWalk;
-  LzbRenderer walker(scene, testing::lzbRenderOptions(), walking);
+  LzbRenderer walker(scene, test::renderOptions("lzb", 2), walking);
   FrameStats walked;
-  renderFrame(walker, cam, {}, &walked);
+  test::renderFrame(walker, cam, &walked);
   for (const char* key : {"ray_triangle_tests", "octree_leaves_visited", "instance_walks"})
     EXPECT_TRUE(walked.counts.contains(key)) << key;  // the paper's walk reports its own work
   EXPECT_EQ(first.shared.value("plane_reused", -1.0), 0.0);

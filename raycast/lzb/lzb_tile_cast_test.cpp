@@ -3,12 +3,16 @@
 #include <gtest/gtest.h>
 
 #include "raycast/lzb/lzb_cull.hpp"
-#include "raycast/lzb/lzb_test_util.hpp"
+#include "raycast/lzb/lzb_renderer.hpp"
+#include "src/image/metrics.hpp"
+#include "src/scene/load.hpp"
+#include "src/zbuffer/zbuffer_renderer.hpp"
+#include "tests/support/cameras.hpp"
 
 namespace lzb::localz {
 namespace {
 
-using testing::pathFrame;
+using test::pathFrame;
 
 // With OOR, a tile's rays stop at the deepest far object whose bounding box holds their pixel:
 // the exact hit of every such ray lies within that reach, and the bound is tighter than the far

@@ -9,6 +9,7 @@
 
 #include "src/core/error.hpp"
 #include "src/core/framebuffer.hpp"
+#include "tests/support/files.hpp"
 
 namespace lzb {
 namespace {
@@ -127,17 +128,7 @@ Scene chain(int levels) {
   return s;
 }
 
-// The message of the InputError f throws ("" and a failure when it throws none).
-template <class F>
-std::string errorOf(F&& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected an InputError";
-  return "";
-}
+using test::errorOf;
 
 TEST(Scene, InstanceDepthIsBoundedAt64Levels) {
   Scene ok = chain(kMaxInstanceDepth);

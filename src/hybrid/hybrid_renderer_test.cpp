@@ -13,11 +13,17 @@
 
 #include "raycast/exact/ray_witness.hpp"
 #include "raycast/exact/raycast_renderer.hpp"
-#include "raycast/lzb/lzb_test_util.hpp"
+#include "raycast/lzb/lzb_renderer.hpp"
 #include "src/core/error.hpp"
 #include "src/core/shading.hpp"
 #include "src/image/metrics.hpp"
-#include "src/image/test_reference.hpp"
+#include "src/scene/load.hpp"
+#include "src/zbuffer/zbuffer_renderer.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/meshes.hpp"
+#include "tests/support/options.hpp"
+#include "tests/support/reference.hpp"
+#include "tests/support/render.hpp"
 
 namespace lzb {
 namespace {
@@ -25,18 +31,10 @@ namespace {
 using hybrid::HybridParams;
 using hybrid::HybridRenderer;
 
-// Accuracy of `image` against the exact ray caster, witnessed by rays (the report's figure).
-Accuracy accuracy(const Scene& scene, const Camera& cam, Framebuffer image) {
-  RaycastRenderer raycast(scene, testing::lzbRenderOptions());
-  shadeFromIds(scene, cam, image);
-  const RayWitness witness(scene, raycast.embreeScene(), cam);
-  return compare(image, testing_util::renderReference(raycast, scene, cam), &witness);
-}
-
 // A field of 256 armadillos (13 M triangles): most triangles far smaller than a pixel.
 const Scene* field() {
   static const Scene* scene = [] {
-    const std::string mesh = testing::scannedMesh("armadillo.off");
+    const std::string mesh = test::scannedMesh("armadillo.off");
     return mesh.empty() ? nullptr
                         : new Scene(loadScene("builtin:replicated?mesh=" + mesh + "&k=16&levels=1", true));
   }();
@@ -54,10 +52,11 @@ HybridParams sampling() {
 
 TEST(HybridRenderer, IsExactOnTheCity) {
   const Scene scene = loadScene("builtin:city?blocks=4", true);
-  HybridRenderer r(scene, testing::lzbRenderOptions(), HybridParams{});
+  HybridRenderer r(scene, test::renderOptions("lzb", 2), HybridParams{});
   for (int f : {0, 2}) {
-    const Camera cam = testing::pathFrame(scene, f, 4, 192, 144);
-    const Accuracy a = accuracy(scene, cam, testing::renderFrame(r, cam));
+    const Camera cam = test::pathFrame(scene, f, 4, 192, 144);
+    const Accuracy a =
+        test::accuracy(scene, cam, test::renderFrame(r, cam), test::renderOptions("lzb", 2));
     EXPECT_GE(a.correctRateCovered, 0.999) << "frame " << f;
     EXPECT_EQ(a.missingPixels, 0u) << "frame " << f;
   }
@@ -67,13 +66,13 @@ TEST(HybridRenderer, IsExactOnTheCity) {
 // counts are each frame's own (they once accumulated over the frames of a run).
 TEST(HybridRenderer, WithNothingSampledCastsLikeLzbEveryFrame) {
   const Scene scene = loadScene("builtin:city?blocks=4", true);
-  HybridRenderer hybrid(scene, testing::lzbRenderOptions(), HybridParams{});
-  localz::LzbRenderer lzb(scene, testing::lzbRenderOptions(), localz::LzbOptions{});
+  HybridRenderer hybrid(scene, test::renderOptions("lzb", 2), HybridParams{});
+  localz::LzbRenderer lzb(scene, test::renderOptions("lzb", 2), localz::LzbOptions{});
   for (int f : {0, 1}) {  // (at this size frame 2 samples distant blocks)
-    const Camera cam = testing::pathFrame(scene, f, 4, 192, 144);
+    const Camera cam = test::pathFrame(scene, f, 4, 192, 144);
     FrameStats hs, ls;
-    const Framebuffer h = testing::renderFrame(hybrid, cam, {}, &hs);
-    const Framebuffer l = testing::renderFrame(lzb, cam, {}, &ls);
+    const Framebuffer h = test::renderFrame(hybrid, cam, &hs);
+    const Framebuffer l = test::renderFrame(lzb, cam, &ls);
     EXPECT_EQ(hs.shared.value("sampled_leaves", -1.0), 0.0) << "frame " << f;
     // Embree's rays, as lzb's (nothing to skip).
     EXPECT_FALSE(hs.counts.contains("octree_leaves_visited")) << "frame " << f;
@@ -92,15 +91,15 @@ TEST(HybridRenderer, WithNothingSampledCastsLikeLzbEveryFrame) {
 TEST(HybridRenderer, SubPixelFieldIsSampledAndShowsVisibleTriangles) {
   const Scene* scene = field();
   if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
-  HybridRenderer hybrid(*scene, testing::lzbRenderOptions(), sampling());
+  HybridRenderer hybrid(*scene, test::renderOptions("lzb", 2), sampling());
   localz::LzbOptions walk;  // what the hybrid's rays do where the point pass takes leaves
   walk.farRays = localz::FarRays::kWalk;
-  localz::LzbRenderer lzb(*scene, testing::lzbRenderOptions(), walk);
-  const Camera cam = testing::pathFrame(*scene, 1, 4, 160, 120);
+  localz::LzbRenderer lzb(*scene, test::renderOptions("lzb", 2), walk);
+  const Camera cam = test::pathFrame(*scene, 1, 4, 160, 120);
   FrameStats hs, ls;
-  const Framebuffer image = testing::renderFrame(hybrid, cam, {}, &hs);
-  testing::renderFrame(lzb, cam, {}, &ls);
-  const Accuracy a = accuracy(*scene, cam, image);
+  const Framebuffer image = test::renderFrame(hybrid, cam, &hs);
+  test::renderFrame(lzb, cam, &ls);
+  const Accuracy a = test::accuracy(*scene, cam, image, test::renderOptions("lzb", 2));
   EXPECT_GE(a.correctRateCovered, 0.95);  // the randomized z-buffer paper's 95-99 %
   EXPECT_LE(a.missingPixels, a.coveredPixels / 100);
   // The point pass took the field: samples show most covered pixels, and the walk skipped the
@@ -120,7 +119,7 @@ TEST(HybridRenderer, PlacementTestNeverHidesASampledLeaf) {
   uint64_t sampledLeaves = 0, placementsTurnedAway = 0;
   for (double threshold : {1e-3, 0.1, 10.0})
     for (int f : {0, 2}) {
-      const Camera cam = testing::pathFrame(scene, f, 4, 192, 144);
+      const Camera cam = test::pathFrame(scene, f, 4, 192, 144);
       hybrid::SampledLeafRule rule(accel, areas, cam.pixelsPerUnitAt(1.0), threshold);
       rule.setPlane(cam.nearPlane());
       const localz::CulledScene culled =
@@ -147,10 +146,11 @@ TEST(HybridRenderer, PlacementTestNeverHidesASampledLeaf) {
 TEST(HybridRenderer, AutomaticThresholdDrawsTheFieldExactly) {
   const Scene* scene = field();
   if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
-  HybridRenderer hybrid(*scene, testing::lzbRenderOptions(), HybridParams{});
-  const Camera cam = testing::pathFrame(*scene, 1, 4, 160, 120);
+  HybridRenderer hybrid(*scene, test::renderOptions("lzb", 2), HybridParams{});
+  const Camera cam = test::pathFrame(*scene, 1, 4, 160, 120);
   FrameStats stats;
-  const Accuracy a = accuracy(*scene, cam, testing::renderFrame(hybrid, cam, {}, &stats));
+  const Accuracy a = test::accuracy(*scene, cam, test::renderFrame(hybrid, cam, &stats),
+                                    test::renderOptions("lzb", 2));
   EXPECT_EQ(stats.shared.value("sampled_leaves", -1.0), 0.0);
   EXPECT_GE(a.correctRateCovered, 0.999);
 }
@@ -159,16 +159,16 @@ TEST(HybridRenderer, AutomaticThresholdDrawsTheFieldExactly) {
 // `split` of the ranks are shares of the 1-rank counts (each less, summing to them).
 void expectRankSharesComposite(const Scene& scene, const Camera& cam, const HybridParams& params,
                                const std::vector<std::string>& split) {
-  HybridRenderer one(scene, testing::lzbRenderOptions(2), params);
+  HybridRenderer one(scene, test::renderOptions("lzb", 2), params);
   FrameStats alone;
-  const Framebuffer single = testing::renderFrame(one, cam, {}, &alone);
+  const Framebuffer single = test::renderFrame(one, cam, &alone);
   for (int size : {2, 3}) {
     Framebuffer composite(cam.width(), cam.height());
     std::vector<double> sums(split.size(), 0.0);
     for (int rank = 0; rank < size; ++rank) {
-      HybridRenderer r(scene, testing::lzbRenderOptions(1), params);
+      HybridRenderer r(scene, test::renderOptions("lzb", 1), params);
       FrameStats stats;
-      const Framebuffer part = testing::renderFrame(r, cam, {rank, size}, &stats);
+      const Framebuffer part = test::renderFrame(r, cam, &stats, {rank, size});
       compositeNearer(composite, part);
       for (size_t k = 0; k < split.size(); ++k) {
         sums[k] += stats.counts.value(split[k], 0.0);
@@ -185,7 +185,7 @@ void expectRankSharesComposite(const Scene& scene, const Camera& cam, const Hybr
 TEST(HybridRenderer, RankSharesCompositeToTheOneRankImageOnASampledField) {
   const Scene* scene = field();
   if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
-  expectRankSharesComposite(*scene, testing::pathFrame(*scene, 1, 4, 160, 120), sampling(),
+  expectRankSharesComposite(*scene, test::pathFrame(*scene, 1, 4, 160, 120), sampling(),
                             {"samples_drawn", "rays_cast"});
 }
 
@@ -195,14 +195,14 @@ TEST(HybridRenderer, RankSharesCompositeToTheOneRankImageOnASampledField) {
 TEST(HybridRenderer, DenseFarSceneIsCastDirectlyAndExactly) {
   const Scene* scene = field();
   if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
-  const Camera cam = testing::pathFrame(*scene, 1, 4, 160, 120);
+  const Camera cam = test::pathFrame(*scene, 1, 4, 160, 120);
   HybridParams lazy;
   lazy.farPass = hybrid::FarPass::kLazy;
   for (const HybridParams& params : {HybridParams{}, lazy}) {
     const bool direct = params.farPass == hybrid::FarPass::kAuto;
-    HybridRenderer hybrid(*scene, testing::lzbRenderOptions(), params);
+    HybridRenderer hybrid(*scene, test::renderOptions("lzb", 2), params);
     FrameStats stats;
-    const Framebuffer image = testing::renderFrame(hybrid, cam, {}, &stats);
+    const Framebuffer image = test::renderFrame(hybrid, cam, &stats);
     const auto& stages = stats.stageSeconds;
     EXPECT_EQ(std::count_if(stages.begin(), stages.end(),
                             [](const auto& st) { return st.first == "raycast"; }),
@@ -212,7 +212,9 @@ TEST(HybridRenderer, DenseFarSceneIsCastDirectlyAndExactly) {
     EXPECT_EQ(stats.shared.value("near_pixels", 0.0) +
                   stats.counts.value(direct ? "ray_pixels" : "pvl_pixels", 0.0),
               double(image.coveredCount()));
-    EXPECT_GE(accuracy(*scene, cam, image).correctRateCovered, 0.999) << direct;
+    EXPECT_GE(test::accuracy(*scene, cam, image, test::renderOptions("lzb", 2)).correctRateCovered,
+              0.999)
+        << direct;
   }
   expectRankSharesComposite(*scene, cam, HybridParams{}, {"rays_cast"});
 }
@@ -223,14 +225,14 @@ TEST(HybridRenderer, DenseFarSceneIsCastDirectlyAndExactly) {
 TEST(HybridRenderer, DirectFrameCullsOnlyToTheMedianHitAndDrawsTheWholeCullsImage) {
   const Scene* scene = field();
   if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
-  const Camera cam = testing::pathFrame(*scene, 1, 4, 160, 120);
-  HybridRenderer hybrid(*scene, testing::lzbRenderOptions(), HybridParams{});
+  const Camera cam = test::pathFrame(*scene, 1, 4, 160, 120);
+  HybridRenderer hybrid(*scene, test::renderOptions("lzb", 2), HybridParams{});
   localz::LzbOptions naive;
   naive.stage = localz::LzbStage::kNaive;
-  localz::LzbRenderer lzb(*scene, testing::lzbRenderOptions(), naive);
+  localz::LzbRenderer lzb(*scene, test::renderOptions("lzb", 2), naive);
   FrameStats hs, ls;
-  const Framebuffer image = testing::renderFrame(hybrid, cam, {}, &hs);
-  const Framebuffer whole = testing::renderFrame(lzb, cam, {}, &ls);
+  const Framebuffer image = test::renderFrame(hybrid, cam, &hs);
+  const Framebuffer whole = test::renderFrame(lzb, cam, &ls);
   ASSERT_TRUE(hs.shared.contains("cull_depth"));
   EXPECT_GT(hs.shared.value("cull_depth", 0.0), cam.nearPlane());
   EXPECT_LT(hs.shared.value("cull_depth", 0.0), cam.farPlane());
@@ -241,9 +243,9 @@ TEST(HybridRenderer, DirectFrameCullsOnlyToTheMedianHitAndDrawsTheWholeCullsImag
   // Lazy frames cull the whole frustum.
   HybridParams lazy;
   lazy.farPass = hybrid::FarPass::kLazy;
-  HybridRenderer lazyHybrid(*scene, testing::lzbRenderOptions(), lazy);
+  HybridRenderer lazyHybrid(*scene, test::renderOptions("lzb", 2), lazy);
   FrameStats zs;
-  testing::renderFrame(lazyHybrid, cam, {}, &zs);
+  test::renderFrame(lazyHybrid, cam, &zs);
   EXPECT_FALSE(zs.shared.contains("cull_depth"));
   EXPECT_EQ(zs.shared.value("culled_leaves", -1.0), ls.shared.value("culled_leaves", -2.0));
 }
@@ -254,11 +256,11 @@ TEST(HybridRenderer, DirectFrameCullsOnlyToTheMedianHitAndDrawsTheWholeCullsImag
 // threads to the same image.
 TEST(HybridRenderer, InstancedBoardIsSampledAsWholeSubtrees) {
   const Scene scene = loadScene("builtin:chessboard?n=16384", true);
-  const Camera cam = testing::pathFrame(scene, 1, 4, 160, 120);
-  HybridRenderer one(scene, testing::lzbRenderOptions(2), sampling());
+  const Camera cam = test::pathFrame(scene, 1, 4, 160, 120);
+  HybridRenderer one(scene, test::renderOptions("lzb", 2), sampling());
   FrameStats alone;
-  const Framebuffer single = testing::renderFrame(one, cam, {}, &alone);
-  const Accuracy a = accuracy(scene, cam, single);
+  const Framebuffer single = test::renderFrame(one, cam, &alone);
+  const Accuracy a = test::accuracy(scene, cam, single, test::renderOptions("lzb", 2));
   EXPECT_GE(a.correctRateCovered, 0.99);
   EXPECT_LE(a.missingPixels, a.coveredPixels / 100);
   const double units = alone.shared.value("sampled_leaves", 0.0);
@@ -266,14 +268,14 @@ TEST(HybridRenderer, InstancedBoardIsSampledAsWholeSubtrees) {
   EXPECT_LT(units, 2000.0);
   EXPECT_EQ(alone.counts.value("pvl_size", 0.0), 0.0);  // nothing left for the rays
   EXPECT_GT(alone.counts.value("sample_pixels", 0.0), 0.99 * double(a.coveredPixels));
-  HybridRenderer oneThread(scene, testing::lzbRenderOptions(1), sampling());
-  EXPECT_EQ(testing::renderFrame(oneThread, cam).id, single.id);
+  HybridRenderer oneThread(scene, test::renderOptions("lzb", 1), sampling());
+  EXPECT_EQ(test::renderFrame(oneThread, cam).id, single.id);
   for (int size : {2, 3}) {
     Framebuffer composite(cam.width(), cam.height());
     double samples = 0.0;
     for (int rank = 0; rank < size; ++rank) {
       FrameStats stats;
-      compositeNearer(composite, testing::renderFrame(oneThread, cam, {rank, size}, &stats));
+      compositeNearer(composite, test::renderFrame(oneThread, cam, &stats, {rank, size}));
       samples += stats.counts.value("samples_drawn", 0.0);
       EXPECT_LT(stats.counts.value("samples_drawn", 0.0), alone.counts.value("samples_drawn", 0.0));
     }

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "src/core/error.hpp"
-#include "src/core/test_camera.hpp"
+#include "tests/support/cameras.hpp"
 
 namespace lzb {
 namespace {
@@ -79,8 +79,7 @@ TEST(Reference, SubsampleSizeLimitNamesTheOption) {
 }
 
 TEST(Reference, FinePixelCentresAreTheStratumCentres) {
-  const Camera camera =
-      testing_util::lookAtCamera({1, 2, 3}, {0, 0, 0}, 0.1, 100.0, 40, 30, 60.0);
+  const Camera camera = test::lookAtCamera({1, 2, 3}, {0, 0, 0}, 0.1, 100.0, 40, 30, 60.0);
   const Camera fine = subsampleCamera(camera);
   ASSERT_EQ(fine.width(), 160);
   ASSERT_EQ(fine.height(), 120);

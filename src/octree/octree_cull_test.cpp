@@ -5,13 +5,13 @@
 #include <random>
 
 #include "src/octree/octree.hpp"
-#include "src/octree/octree_test_util.hpp"
+#include "tests/support/random_geometry.hpp"
 
 namespace lzb {
 namespace {
 
-using testutil::randomMesh;
-using testutil::vertex;
+using test::randomMesh;
+using test::vertex;
 
 std::map<uint32_t, Cull> cull(const Octree& tree, const Frustum& f, const glm::dmat4& m) {
   std::map<uint32_t, Cull> out;
@@ -53,12 +53,12 @@ TEST(OctreeCull, MatchesPerLeafClassificationAndKeepsEveryVisibleTriangle) {
   OctreeParams p;
   p.maxLeafEntries = 20;
   const Octree tree(mesh, {}, p);
-  const std::vector<uint32_t> leaves = testutil::nonEmptyLeaves(tree);
+  const std::vector<uint32_t> leaves = test::nonEmptyLeaves(tree);
   std::mt19937_64 rng(21);
   uint64_t emittedTotal = 0, culledTotal = 0, insideTotal = 0, visibleChecks = 0;
   for (int trial = 0; trial < 40; ++trial) {
     const glm::dmat4 m =
-        trial % 4 == 0 ? glm::dmat4(1.0) : testutil::randomTransform(rng, trial % 4 == 3);
+        trial % 4 == 0 ? glm::dmat4(1.0) : test::randomRigidMotion(rng, trial % 4 == 3);
     const Frustum world = cameraAt(rng, m).frustum();
     const auto got = cull(tree, world, m);
     // Same answer as classifying every leaf box with the node-space frustum.
@@ -125,7 +125,7 @@ TEST(OctreeCull, FrustumToNodeSpaceKeepsContainment) {
   std::uniform_real_distribution<double> u(-2.0, 2.0);
   int inside = 0;
   for (int trial = 0; trial < 20; ++trial) {
-    const glm::dmat4 m = testutil::randomTransform(rng, trial % 2 == 1);
+    const glm::dmat4 m = test::randomRigidMotion(rng, trial % 2 == 1);
     const Frustum world = cameraAt(rng, m).frustum();
     const Frustum local = frustumToNodeSpace(world, m);
     for (int i = 0; i < 2000; ++i) {

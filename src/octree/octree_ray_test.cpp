@@ -7,13 +7,13 @@
 #include <utility>
 
 #include "src/octree/octree.hpp"
-#include "src/octree/octree_test_util.hpp"
+#include "tests/support/random_geometry.hpp"
 
 namespace lzb {
 namespace {
 
-using testutil::randomMesh;
-using testutil::vertex;
+using test::randomMesh;
+using test::vertex;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -37,7 +37,7 @@ std::vector<Visit> walk(const Octree& tree, const glm::dvec3& o, const glm::dvec
 std::vector<Visit> bruteForce(const Octree& tree, const glm::dvec3& o, const glm::dvec3& d,
                               double tMin, double tMax) {
   std::vector<Visit> out;
-  for (uint32_t leaf : testutil::nonEmptyLeaves(tree)) {
+  for (uint32_t leaf : test::nonEmptyLeaves(tree)) {
     const Bounds& b = tree.nodeBox(leaf);
     double t0 = tMin, t1 = tMax;
     bool hit = true;

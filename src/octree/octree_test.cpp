@@ -8,14 +8,14 @@
 #include <random>
 
 #include "src/core/error.hpp"
-#include "src/octree/octree_test_util.hpp"
+#include "tests/support/random_geometry.hpp"
 #include "src/octree/tri_box_overlap.hpp"
 
 namespace lzb {
 namespace {
 
-using testutil::randomMesh;
-using testutil::vertex;
+using test::randomMesh;
+using test::vertex;
 
 bool overlaps(const Mesh& m, uint32_t t, const Bounds& box) {
   return triBoxOverlap(box, vertex(m, t, 0), vertex(m, t, 1), vertex(m, t, 2));
@@ -179,7 +179,7 @@ TEST(Octree, InstancesListedInLeavesTheirBoxesOverlap) {
   scene.nodes[child].mesh = randomMesh(200, 6);
   std::mt19937_64 rng(5);
   for (int i = 0; i < 60; ++i) {
-    glm::dmat4 m = testutil::randomTransform(rng, i % 2 == 1);
+    glm::dmat4 m = test::randomRigidMotion(rng, i % 2 == 1);
     m = glm::dmat4(glm::dmat3(m) * 0.1);
     m[3] = glm::dvec4(glm::dvec3(std::uniform_real_distribution<double>(-1.2, 1.2)(rng),
                                  std::uniform_real_distribution<double>(-1.2, 1.2)(rng),

@@ -10,12 +10,16 @@
 #include <cstdio>
 #include <limits>
 
-#include "src/rzb/rzb_test_util.hpp"
+#include "src/image/metrics.hpp"
+#include "src/rzb/rzb_renderer.hpp"
+#include "src/scene/load.hpp"
+#include "src/zbuffer/zbuffer_renderer.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/meshes.hpp"
+#include "tests/support/options.hpp"
 
 namespace lzb::rzb {
 namespace {
-
-using namespace testing_util;
 
 // Both rasterizers snap vertices to 1/256 pixel (OSMesa from float coordinates): a pixel centre
 // whose coverage differs lies within about two subpixels of the exact edge.
@@ -143,7 +147,8 @@ void expectNativeMatchesGl(const Scene& scene, const Camera& camera, const std::
                            double maxDifferRate) {
   RzbParams native, gl;
   gl.fallbackRender = FallbackRender::kGl;
-  RzbRenderer rn(scene, options(2), native), rg(scene, options(2), gl);
+  RzbRenderer rn(scene, test::renderOptions("rzb", 2, 7), native),
+      rg(scene, test::renderOptions("rzb", 2, 7), gl);
   RzbRenderer::Frame fn(camera, 0, {}, 7), fg(camera, 0, {}, 7);
   runStages(rn, fn);
   runStages(rg, fg);
@@ -185,19 +190,19 @@ void expectNativeMatchesGl(const Scene& scene, const Camera& camera, const std::
 
 TEST(RzbFallback, NativeMatchesOsMesaOnTheCity) {
   const Scene scene = loadScene("builtin:city?blocks=6", true);
-  expectNativeMatchesGl(scene, sceneCamera(scene, 320, 240), "city", 2.5e-4);
+  expectNativeMatchesGl(scene, test::sceneCamera(scene, 320, 240), "city", 2.5e-4);
 }
 
 TEST(RzbFallback, NativeMatchesOsMesaOnTheForest) {
   const Scene scene = loadScene("builtin:forest", true);
-  expectNativeMatchesGl(scene, sceneCamera(scene, 320, 240), "forest", 2.5e-4);
+  expectNativeMatchesGl(scene, test::sceneCamera(scene, 320, 240), "forest", 2.5e-4);
 }
 
 TEST(RzbFallback, NativeMatchesOsMesaOnARealMesh) {
-  const std::string path = realMesh("bunny00.off");
+  const std::string path = test::scannedMesh("bunny00.off");
   if (path.empty()) GTEST_SKIP() << "bunny00.off missing: run scripts/fetch-test-meshes.sh";
   const Scene scene = loadScene(path, true);
-  expectNativeMatchesGl(scene, sceneCamera(scene, 320, 240), "bunny", 2.5e-4);
+  expectNativeMatchesGl(scene, test::sceneCamera(scene, 320, 240), "bunny", 2.5e-4);
 }
 
 }  // namespace

@@ -19,12 +19,16 @@
 #include "src/core/timer.hpp"
 #include "src/image/metrics.hpp"
 #include "src/rzb/box_sampler.hpp"
-#include "src/rzb/rzb_test_util.hpp"
+#include "src/rzb/rzb_renderer.hpp"
+#include "src/scene/load.hpp"
+#include "src/zbuffer/zbuffer_renderer.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/meshes.hpp"
+#include "tests/support/options.hpp"
+#include "tests/support/render.hpp"
 
 namespace lzb::rzb {
 namespace {
-
-using namespace testing_util;
 
 double cpuSeconds() {
   timespec t;
@@ -65,14 +69,14 @@ TEST(RzbBench, PointPassParts) {
   const BenchSetup bench = benchSetup("builtin:chessboard?n=64");
   const Scene& scene = bench.scene;
   const int threads = bench.threads;
-  const Camera camera = sceneCamera(scene, 640, 480);
+  const Camera camera = test::sceneCamera(scene, 640, 480);
   // RZB_BENCH_FALLBACK=auto keeps the z-buffer fallback (only the point pass is timed here).
   const char* fb = std::getenv("RZB_BENCH_FALLBACK");
   RzbParams p;
   p.fallback = fb && std::string(fb) == "auto";
-  RzbRenderer r(scene, options(threads), p);
+  RzbRenderer r(scene, test::renderOptions("rzb", threads, 7), p);
   FrameStats warm;
-  renderWith(r, camera, 0, {}, &warm);
+  test::renderFrame(r, camera, &warm);
   // The renderer's selection; its sample boxes.
   const double pixels = 640.0 * 480.0;
   SelectParams sp;
@@ -176,7 +180,7 @@ TEST(RzbBench, DynamicUpdates) {
   if (!benchEnabled()) GTEST_SKIP() << "set LZB_BENCH=1";
   Scene scene = flattened(loadScene("builtin:city?blocks=10", true));
   const uint32_t cityTriangles = uint32_t(scene.nodes[0].mesh.size());
-  const std::string path = realMesh("elephant.off");
+  const std::string path = test::scannedMesh("elephant.off");
   ASSERT_FALSE(path.empty()) << "elephant.off missing";
   const Scene object = loadScene(path, true);
   // The object, 12 m tall, standing in the street in front of the camera.
@@ -261,17 +265,17 @@ TEST(RzbBench, Table1) {
   const Scene& scene = bench.scene;
   const int threads = bench.threads;
   const char* spec = bench.spec.c_str();
-  const Camera camera = sceneCamera(scene, 640, 480);
+  const Camera camera = test::sceneCamera(scene, 640, 480);
   const bool withZ = !std::getenv("RZB_BENCH_NO_ZBUFFER");
   ReferenceFrame exact;
   double zSeconds = 0.0;
   if (withZ) {
-    ZBufferRenderer z(scene, options(threads));
-    renderWith(z, camera);  // uploads
+    ZBufferRenderer z(scene, test::renderOptions("rzb", threads, 7));
+    test::renderFrame(z, camera);  // uploads
     Stopwatch c;
-    const Framebuffer centres = renderWith(z, camera);
+    const Framebuffer centres = test::renderFrame(z, camera);
     zSeconds = c.seconds();
-    exact = reduceReference(centres, renderWith(z, subsampleCamera(camera)));
+    exact = reduceReference(centres, test::renderFrame(z, subsampleCamera(camera)));
   }
   for (int d : {1, 2, 5}) {
     for (bool cache : {false, true}) {
@@ -279,14 +283,14 @@ TEST(RzbBench, Table1) {
       p.splat = d;
       p.reconstruct = d > 1 ? Reconstruct::kSplat : Reconstruct::kPixel;
       p.cacheMb = cache ? 1024.0 : 0.0;
-      RzbRenderer r(scene, options(threads), p);
+      RzbRenderer r(scene, test::renderOptions("rzb", threads, 7), p);
       double first = 0.0, best = 1e30;
       Framebuffer fb;
       FrameStats stats;
       for (int f = 0; f < 4; ++f) {
         FrameStats s;
         Stopwatch c;
-        fb = renderWith(r, camera, f, {}, &s);
+        fb = test::renderFrame(r, camera, &s, {}, f);
         const double t = c.seconds();
         if (f == 0) first = t;
         if (f > 0 && t < best) best = t, stats = s;
@@ -335,7 +339,8 @@ TEST(RzbBench, CacheWalkthrough) {
   plain.reconstruct = plain.splat > 1 ? Reconstruct::kSplat : Reconstruct::kPixel;
   RzbParams cached = plain;
   cached.cacheMb = 2048.0;
-  RzbRenderer a(scene, options(threads), plain), b(scene, options(threads), cached);
+  RzbRenderer a(scene, test::renderOptions("rzb", threads, 7), plain),
+      b(scene, test::renderOptions("rzb", threads, 7), cached);
   const auto stages = [](const FrameStats& s) {
     nlohmann::json j = nlohmann::json::object();
     for (const auto& [n, v] : s.stageSeconds) j[n] = v;
@@ -345,9 +350,9 @@ TEST(RzbBench, CacheWalkthrough) {
     const Camera camera = walkCamera(scene, f, step, 640, 480);
     FrameStats sa, sb;
     Stopwatch c;
-    renderWith(a, camera, f, {}, &sa);
+    test::renderFrame(a, camera, &sa, {}, f);
     const double ta = c.lap();
-    renderWith(b, camera, f, {}, &sb);
+    test::renderFrame(b, camera, &sb, {}, f);
     const double tb = c.lap();
     const nlohmann::json j = {{"scene", spec},
                               {"fallback", plain.fallback ? "auto" : "off"},
@@ -374,7 +379,7 @@ TEST(RzbBench, EpsCurve) {
   const Scene& scene = bench.scene;
   const int threads = bench.threads;
   const char* spec = bench.spec.c_str();
-  const Camera camera = sceneCamera(scene, 640, 480);
+  const Camera camera = test::sceneCamera(scene, 640, 480);
   std::vector<double> values;
   for (double e = 1.02; e < 16.0; e *= 1.25) values.push_back(e);
   for (int i = -1; i < int(values.size()); ++i) {
@@ -383,13 +388,13 @@ TEST(RzbBench, EpsCurve) {
       p.autoEps = true;
     else
       p.eps = values[size_t(i)];
-    RzbRenderer r(scene, options(threads), p);
+    RzbRenderer r(scene, test::renderOptions("rzb", threads, 7), p);
     FrameStats s, best;
     double bestT = 1e30;
     for (int rep = 0; rep < 3; ++rep) {
       FrameStats t;
       Stopwatch c;
-      renderWith(r, camera, 0, {}, &t);
+      test::renderFrame(r, camera, &t);
       const double sec = c.seconds();
       if (sec < bestT) bestT = sec, best = t;
     }

@@ -6,13 +6,17 @@
 #include <vector>
 
 #include "src/rzb/box_sampler.hpp"
-#include "src/rzb/rzb_test_util.hpp"
+#include "src/image/metrics.hpp"
+#include "src/rzb/rzb_renderer.hpp"
+#include "src/scene/load.hpp"
+#include "src/zbuffer/zbuffer_renderer.hpp"
 #include "src/rzb/sample_scene.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/options.hpp"
+#include "tests/support/render.hpp"
 
 namespace lzb::rzb {
 namespace {
-
-using namespace testing_util;
 
 // Chi-square statistic of observed counts against expected probabilities.
 double chiSquare(const std::vector<uint64_t>& observed, const std::vector<double>& p, uint64_t n) {
@@ -136,15 +140,15 @@ TEST(Sampling, CoverageOfAScreenFillingPlaneMatchesTheCouponCollector) {
   ASSERT_TRUE(m.add({-s, -s, 0}, {s, -s, 0}, {s, s, 0}, packRgba8(100, 100, 100)));
   ASSERT_TRUE(m.add({-s, -s, 0}, {s, s, 0}, {-s, s, 0}, packRgba8(100, 100, 100)));
   scene.finalize();
-  const Camera camera = makeCamera({0, 0, 20}, {0, 0, 0}, 1.0, 100.0, 128, 96);
+  const Camera camera = test::lookAtCamera({0, 0, 20}, {0, 0, 0}, 1.0, 100.0, 128, 96);
   double lastEmpty = 1e30;
   for (double oversample : {0.25, 0.5, 0.75, 1.0}) {
     RzbParams p;
     p.fallback = false;
     p.oversample = oversample;
-    RzbRenderer r(scene, options(2), p);
+    RzbRenderer r(scene, test::renderOptions("rzb", 2, 7), p);
     FrameStats stats;
-    const Framebuffer fb = renderWith(r, camera, 0, {}, &stats);
+    const Framebuffer fb = test::renderFrame(r, camera, &stats);
     const double v = double(fb.size());
     const double landed = stats.counts["samples_splatted"].get<double>();
     const double empty = v - double(fb.coveredCount());

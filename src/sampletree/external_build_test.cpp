@@ -11,7 +11,7 @@
 
 #include "src/core/error.hpp"
 #include "src/sampletree/external_build.hpp"
-#include "src/sampletree/test_input.hpp"
+#include "tests/support/files.hpp"
 #include "src/sampletree/tree_build.hpp"
 #include "src/sampletree/tree_store.hpp"
 #include "src/scene/builtin.hpp"

@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "src/core/error.hpp"
-#include "src/core/test_camera.hpp"
 #include "src/sampletree/node_cache.hpp"
 #include "src/sampletree/sampletree_renderer.hpp"
 #include "src/sampletree/store_reader.hpp"
@@ -21,6 +20,9 @@
 #include "src/sampletree/tree_build.hpp"
 #include "src/sampletree/tree_store.hpp"
 #include "src/scene/load.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/frames.hpp"
+#include "tests/support/render.hpp"
 
 namespace lzb::sampletree {
 namespace {
@@ -51,9 +53,9 @@ std::vector<Camera> walk() {
   const double d = b.diagonal();
   std::vector<Camera> out;
   for (double k : {6.0, 2.5, 1.2, 0.8, 0.8})
-    out.push_back(testing_util::lookAtCamera(b.center() + glm::dvec3(0.3, 0.5, 1.0) * (k * d),
-                                             b.center() + glm::dvec3(0.05 * k * d, 0, 0),
-                                             0.01 * d, 20 * d, kW, kH));
+    out.push_back(test::lookAtCamera(b.center() + glm::dvec3(0.3, 0.5, 1.0) * (k * d),
+                                     b.center() + glm::dvec3(0.05 * k * d, 0, 0), 0.01 * d, 20 * d,
+                                     kW, kH));
   return out;
 }
 
@@ -78,15 +80,11 @@ struct Frame {
   double count(const char* name) const { return stats.counts.value(name, 0.0); }
 };
 
-Frame renderFrame(SampleTreeRenderer& r, const Camera& camera, WorkShare share = {}) {
+// A frame and its statistics (the store's counts are read per frame).
+Frame frameOf(SampleTreeRenderer& r, const Camera& camera, WorkShare share = {}) {
   Frame f;
-  f.fb.clear();
-  r.render(camera, 0, share, f.fb, f.stats);
+  f.fb = test::renderFrame(r, camera, &f.stats, share);
   return f;
-}
-
-bool sameKeys(const Framebuffer& a, const Framebuffer& b) {
-  return a.id == b.id && std::memcmp(a.depth.data(), b.depth.data(), a.size() * 4) == 0;
 }
 
 uint64_t largestNode() {
@@ -120,9 +118,10 @@ TEST(OutOfCore, FramesEqualTheInCoreRendererForEveryCacheSize) {
       ASSERT_NE(paged.cache(), nullptr);
       double batches = 0;
       for (size_t k = 0; k < cameras.size(); ++k) {
-        const Frame want = renderFrame(reference, cameras[k]);
-        const Frame got = renderFrame(paged, cameras[k]);
-        EXPECT_TRUE(sameKeys(want.fb, got.fb)) << "splat " << splat << ", budget " << budget << ", frame " << k;
+        const Frame want = frameOf(reference, cameras[k]);
+        const Frame got = frameOf(paged, cameras[k]);
+        EXPECT_TRUE(test::sameKeys(want.fb, got.fb))
+            << "splat " << splat << ", budget " << budget << ", frame " << k;
         EXPECT_EQ(got.count("triangles_drawn"), want.count("triangles_drawn"));
         EXPECT_LE(got.count("cache_bytes"), double(budget));
         batches = std::max(batches, got.count("draw_batches"));
@@ -140,14 +139,14 @@ TEST(OutOfCore, FramesEqualTheInCoreRendererForEveryCacheSize) {
 TEST(OutOfCore, RankSharesCompositeToTheOneRankImage) {
   const Camera camera = walk()[2];
   SampleTreeRenderer one = makeRenderer(options(double(largestNode())), 1);
-  const Frame all = renderFrame(one, camera);
+  const Frame all = frameOf(one, camera);
   Framebuffer composite(kW, kH);
   composite.clear();
   for (int rank = 0; rank < 3; ++rank) {
     SampleTreeRenderer part = makeRenderer(options(double(largestNode())), 1);
-    compositeNearer(composite, renderFrame(part, camera, WorkShare{rank, 3}).fb);
+    compositeNearer(composite, frameOf(part, camera, WorkShare{rank, 3}).fb);
   }
-  EXPECT_TRUE(sameKeys(all.fb, composite));
+  EXPECT_TRUE(test::sameKeys(all.fb, composite));
 }
 
 // A source that counts what the cache asks of it (a node server answers each call with one message).
@@ -196,7 +195,7 @@ TEST(OutOfCore, OneAcquireAsksTheSourceOnce) {
 TEST(OutOfCore, CountersAddUpAndASecondFrameLoadsNothing) {
   const Camera camera = walk()[2];
   SampleTreeRenderer r = makeRenderer(options(64 << 20, 1, 0));
-  const Frame first = renderFrame(r, camera);
+  const Frame first = frameOf(r, camera);
   uint64_t payload = 0;
   const SampleTree& table = r.tree();
   for (const Visit& v : traverse(table, camera, 1).visits)
@@ -209,13 +208,13 @@ TEST(OutOfCore, CountersAddUpAndASecondFrameLoadsNothing) {
   EXPECT_EQ(first.count("cache_hits"), 0.0);
   EXPECT_EQ(first.count("nodes_prefetched"), 0.0);
   EXPECT_EQ(first.count("cache_bytes"), double(payload));
-  const Frame second = renderFrame(r, camera);
+  const Frame second = frameOf(r, camera);
   EXPECT_EQ(second.count("nodes_loaded"), 0.0);
   EXPECT_EQ(second.count("bytes_read"), 0.0);
   EXPECT_EQ(second.count("file_bytes_read"), 0.0);
   EXPECT_EQ(second.count("cache_hits"), first.count("nodes_drawn"));
   EXPECT_EQ(second.count("load_wait_seconds"), 0.0);
-  EXPECT_TRUE(sameKeys(first.fb, second.fb));
+  EXPECT_TRUE(test::sameKeys(first.fb, second.fb));
 }
 
 // A frame three times the cache streams in batches, in the same order every frame: the next
@@ -226,10 +225,10 @@ TEST(OutOfCore, AFrameLargerThanTheCacheKeepsPartOfItForTheNext) {
   const uint64_t budget = std::max(payload / 3, 2 * largestNode());
   ASSERT_LT(budget, payload);
   SampleTreeRenderer r = makeRenderer(options(double(budget), 1, 0));
-  const Frame first = renderFrame(r, camera);
-  const Frame second = renderFrame(r, camera);
+  const Frame first = frameOf(r, camera);
+  const Frame second = frameOf(r, camera);
   EXPECT_GT(first.count("draw_batches"), 1.0);
-  EXPECT_TRUE(sameKeys(first.fb, second.fb));
+  EXPECT_TRUE(test::sameKeys(first.fb, second.fb));
   // At least half of what fits beside one batch is reused.
   const double drawn = second.count("nodes_drawn");
   EXPECT_GT(second.count("cache_hits"), 0.15 * drawn) << "of " << drawn << " nodes";
@@ -241,11 +240,11 @@ TEST(OutOfCore, PrefetchLoadsWhatTheNextFrameNeeds) {
   double hits[3] = {0, 0, 0};
   for (int levels : {0, 1, 2}) {
     SampleTreeRenderer r = makeRenderer(options(64 << 20, 1, levels));
-    const Frame far = renderFrame(r, cameras[1]);
+    const Frame far = frameOf(r, cameras[1]);
     r.cache()->drain();  // what the frame queued is loaded
     const CacheCounters between = r.cache()->takeCounters();
     EXPECT_EQ(far.count("nodes_prefetched") + double(between.nodesPrefetched) > 0, levels > 0);
-    const Frame near = renderFrame(r, cameras[2]);
+    const Frame near = frameOf(r, cameras[2]);
     hits[levels] = near.count("cache_hits");
     const double demanded = near.count("nodes_loaded") - near.count("nodes_prefetched");
     if (levels == 0)
@@ -255,7 +254,7 @@ TEST(OutOfCore, PrefetchLoadsWhatTheNextFrameNeeds) {
     // The same frame again: everything resident, nothing loaded.
     r.cache()->drain();
     r.cache()->takeCounters();
-    EXPECT_EQ(renderFrame(r, cameras[2]).count("nodes_loaded"), 0.0) << levels;
+    EXPECT_EQ(frameOf(r, cameras[2]).count("nodes_loaded"), 0.0) << levels;
   }
   EXPECT_GT(hits[1], hits[0]);
   EXPECT_GE(hits[2], hits[1]);
@@ -296,14 +295,14 @@ TEST(OutOfCore, ABlockCorruptedAfterOpeningFailsTheFrame) {
   st.treePath = bad.string();
   SampleTreeRenderer r = makeRenderer(st);  // header, table and node table are sound
   try {
-    renderFrame(r, camera);
+    frameOf(r, camera);
     FAIL() << "no error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(bad.string()), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("corrupted"), std::string::npos) << e.what();
   }
   // The loader stopped: the next frame fails alike.
-  EXPECT_THROW(renderFrame(r, camera), InputError);
+  EXPECT_THROW(frameOf(r, camera), InputError);
 }
 
 }  // namespace

@@ -4,11 +4,13 @@
 
 #include <cstring>
 
-#include "src/core/test_camera.hpp"
 #include "src/sampletree/sampletree_renderer.hpp"
 #include "src/sampletree/traversal.hpp"
 #include "src/scene/load.hpp"
 #include "src/zbuffer/native_raster.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/frames.hpp"
+#include "tests/support/render.hpp"
 
 namespace lzb::sampletree {
 namespace {
@@ -26,20 +28,15 @@ Rendered renderTree(const Scene& scene, const Camera& camera, const SampleTreeOp
   options.threads = threads;
   options.seed = 9;
   SampleTreeRenderer r(scene, options, st);
-  Rendered out{Framebuffer(kW, kH), {}};
-  out.fb.clear();
-  r.render(camera, 0, share, out.fb, out.stats);
+  Rendered out;
+  out.fb = test::renderFrame(r, camera, &out.stats, share);
   return out;
 }
 
 Camera nearCamera(const Scene& scene) {
   const Bounds b = scene.bounds();
-  return testing_util::lookAtCamera(b.center() + glm::dvec3(0.3, 0.5, 1.2) * b.diagonal(),
-                                    b.center(), 0.01 * b.diagonal(), 10 * b.diagonal(), kW, kH);
-}
-
-bool sameKeys(const Framebuffer& a, const Framebuffer& b) {
-  return a.id == b.id && std::memcmp(a.depth.data(), b.depth.data(), a.size() * 4) == 0;
+  return test::lookAtCamera(b.center() + glm::dvec3(0.3, 0.5, 1.2) * b.diagonal(), b.center(),
+                            0.01 * b.diagonal(), 10 * b.diagonal(), kW, kH);
 }
 
 TEST(SampleTreeRenderer, WithoutStoppingItIsTheExactZBuffer) {
@@ -61,14 +58,14 @@ TEST(SampleTreeRenderer, WithoutStoppingItIsTheExactZBuffer) {
   exact.clear();
   NativeRasterizer().draw(scene, camera, lists, {}, 2, exact);
   EXPECT_GT(exact.coveredCount(), 1000u);
-  EXPECT_TRUE(sameKeys(tree.fb, exact));
+  EXPECT_TRUE(test::sameKeys(tree.fb, exact));
 }
 
 TEST(SampleTreeRenderer, FarAwayTheRootIsOneSplat) {
   const Scene scene = loadScene("builtin:sphereflake?depth=2", true);
   const Bounds b = scene.bounds();
-  const Camera camera = testing_util::lookAtCamera(b.center() + glm::dvec3(0, 0, 1e4) * b.diagonal(),
-                                                   b.center(), 1.0, 1e6 * b.diagonal(), kW, kH);
+  const Camera camera = test::lookAtCamera(b.center() + glm::dvec3(0, 0, 1e4) * b.diagonal(),
+                                           b.center(), 1.0, 1e6 * b.diagonal(), kW, kH);
   const Rendered r = renderTree(scene, camera, SampleTreeOptions{}, 1);
   EXPECT_EQ(r.stats.counts["splats_drawn"].get<double>(), 1.0);
   EXPECT_EQ(r.stats.counts["triangles_drawn"].get<double>(), 0.0);
@@ -78,8 +75,8 @@ TEST(SampleTreeRenderer, FarAwayTheRootIsOneSplat) {
 TEST(SampleTreeRenderer, FarAwayTheRootDrawsItsTrianglesWhenAsked) {
   const Scene scene = loadScene("builtin:sphereflake?depth=2", true);
   const Bounds b = scene.bounds();
-  const Camera camera = testing_util::lookAtCamera(b.center() + glm::dvec3(0, 0, 1e4) * b.diagonal(),
-                                                   b.center(), 1.0, 1e6 * b.diagonal(), kW, kH);
+  const Camera camera = test::lookAtCamera(b.center() + glm::dvec3(0, 0, 1e4) * b.diagonal(),
+                                           b.center(), 1.0, 1e6 * b.diagonal(), kW, kH);
   SampleTreeOptions st;
   st.stopDraw = StopDraw::kTriangles;
   RenderOptions options;
@@ -120,7 +117,7 @@ TEST(SampleTreeRenderer, RankSharesAndThreadsGiveTheSameImage) {
     SampleTreeOptions st;
     st.splat = splat;
     const Rendered one = renderTree(scene, camera, st, 2);
-    EXPECT_TRUE(sameKeys(one.fb, renderTree(scene, camera, st, 1).fb));
+    EXPECT_TRUE(test::sameKeys(one.fb, renderTree(scene, camera, st, 1).fb));
     for (int size : {2, 3}) {
       Framebuffer all(kW, kH);
       all.clear();
@@ -131,7 +128,7 @@ TEST(SampleTreeRenderer, RankSharesAndThreadsGiveTheSameImage) {
         triangles += part.stats.counts["triangles_drawn"].get<double>();
         splats += part.stats.counts["splats_drawn"].get<double>();
       }
-      EXPECT_TRUE(sameKeys(one.fb, all)) << size << " ranks, splat " << splat;
+      EXPECT_TRUE(test::sameKeys(one.fb, all)) << size << " ranks, splat " << splat;
       EXPECT_EQ(triangles, one.stats.counts["triangles_drawn"].get<double>());
       EXPECT_EQ(splats, one.stats.counts["splats_drawn"].get<double>());
     }
@@ -146,7 +143,7 @@ TEST(Traversal, ProjectedCellShrinksWithDistance) {
   tree.nodes.push_back(root);
   const auto at = [&](double z) {
     return projectedCellPixels(tree, tree.nodes[0],
-                               testing_util::lookAtCamera({0.5, 0.5, z}, {0.5, 0.5, 0}, 0.1, 1e9, kW, kH));
+                               test::lookAtCamera({0.5, 0.5, z}, {0.5, 0.5, 0}, 0.1, 1e9, kW, kH));
   };
   EXPECT_GT(at(10), at(100));
   EXPECT_NEAR(at(1000) / at(2000), 4.0, 0.05);

@@ -12,7 +12,7 @@
 #include "src/core/error.hpp"
 #include "src/sampletree/cell_octree.hpp"
 #include "src/sampletree/sample_draw.hpp"
-#include "src/sampletree/test_input.hpp"
+#include "tests/support/random_geometry.hpp"
 #include "src/sampletree/tree_build.hpp"
 #include "src/scene/load.hpp"
 

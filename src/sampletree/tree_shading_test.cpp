@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "src/core/shading.hpp"
-#include "src/core/test_camera.hpp"
+#include "tests/support/cameras.hpp"
 #include "src/sampletree/sampletree_renderer.hpp"
 #include "src/scene/load.hpp"
 
@@ -43,7 +43,7 @@ TEST(TreeShading, KeepsWhatTheFrameShowsAndShadesItByTheOneRule) {
   Framebuffer fb(4, 1);
   fb.clear();
   fb.id = {11, kNoId, 12, 12};
-  const Camera camera = testing_util::lookAtCamera({0.3, 0.3, 9.0}, {0.3, 0.3, 0.0}, 0.1, 100.0, 4, 1);
+  const Camera camera = test::lookAtCamera({0.3, 0.3, 9.0}, {0.3, 0.3, 0.0}, 0.1, 100.0, 4, 1);
   const Light light;
   TreeShading shading;
   shading.keepShown(fb, soup.view(), 2);
@@ -73,7 +73,7 @@ TEST(TreeShading, ASplatAndItsTriangleGetOneColour) {
   Framebuffer a(1, 1), b(1, 1);
   a.clear(), b.clear();
   a.id = b.id = {11};
-  const Camera camera = testing_util::lookAtCamera({0.3, 5.0, 9.0}, {0.3, 0.3, 1.0}, 0.1, 100.0, 1, 1);
+  const Camera camera = test::lookAtCamera({0.3, 5.0, 9.0}, {0.3, 0.3, 1.0}, 0.1, 100.0, 1, 1);
   TreeShading splat, drawn;
   const uint32_t node = 0;
   splat.addRepresentatives(table, {&node, 1});
@@ -88,8 +88,9 @@ TEST(TreeShading, ASplatAndItsTriangleGetOneColour) {
 TEST(TreeShading, ColoursAreTheSceneShadingsUpToRounding) {
   const Scene scene = loadScene("builtin:city?blocks=2", true);
   const Bounds b = scene.bounds();
-  const Camera camera = testing_util::lookAtCamera(b.center() + glm::dvec3(0.3, 0.5, 1.2) * b.diagonal(),
-                                                   b.center(), 0.01 * b.diagonal(), 10 * b.diagonal(), 160, 120);
+  const Camera camera =
+      test::lookAtCamera(b.center() + glm::dvec3(0.3, 0.5, 1.2) * b.diagonal(), b.center(),
+                         0.01 * b.diagonal(), 10 * b.diagonal(), 160, 120);
   RenderOptions options;
   options.threads = 2;
   SampleTreeRenderer r(scene, options, SampleTreeOptions{});

@@ -10,7 +10,8 @@
 
 #include "src/core/error.hpp"
 #include "src/sampletree/crc32c.hpp"
-#include "src/sampletree/test_input.hpp"
+#include "tests/support/files.hpp"
+#include "tests/support/random_geometry.hpp"
 #include "src/sampletree/tree_build.hpp"
 #include "src/sampletree/tree_store.hpp"
 

@@ -11,13 +11,13 @@
 #include "src/core/camera.hpp"
 #include "src/core/error.hpp"
 #include "src/scene/load.hpp"
-#include "src/scene/test_util.hpp"
+#include "tests/support/files.hpp"
 
 namespace lzb {
 namespace {
 
-using testing_util::errorOf;
-using testing_util::ScratchDir;
+using test::errorOf;
+using test::ScratchDir;
 
 const Node& proceduralNode(const Scene& s) {
   for (const Node& n : s.nodes)

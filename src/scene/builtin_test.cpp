@@ -10,13 +10,13 @@
 
 #include "src/core/error.hpp"
 #include "src/scene/load.hpp"
-#include "src/scene/test_util.hpp"
+#include "tests/support/files.hpp"
 
 namespace lzb {
 namespace {
 
-using testing_util::errorOf;
-using testing_util::ScratchDir;
+using test::errorOf;
+using test::ScratchDir;
 
 Scene generate(const std::string& spec) {
   return loadScene("builtin:" + spec, true);

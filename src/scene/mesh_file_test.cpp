@@ -8,13 +8,13 @@
 
 #include "src/core/error.hpp"
 #include "src/scene/load.hpp"
-#include "src/scene/test_util.hpp"
+#include "tests/support/files.hpp"
 
 namespace lzb {
 namespace {
 
-using testing_util::errorOf;
-using testing_util::ScratchDir;
+using test::errorOf;
+using test::ScratchDir;
 
 const std::string kQuadObj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3\nf 1 3 4\n";
 const std::string kPlyHeader =

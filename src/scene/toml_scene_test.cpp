@@ -7,13 +7,13 @@
 
 #include "src/core/error.hpp"
 #include "src/scene/load.hpp"
-#include "src/scene/test_util.hpp"
+#include "tests/support/files.hpp"
 
 namespace lzb {
 namespace {
 
-using testing_util::errorOf;
-using testing_util::ScratchDir;
+using test::errorOf;
+using test::ScratchDir;
 
 const char* kTetrahedron =
     "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";

@@ -6,12 +6,18 @@
 #include <cstdio>
 #include <cmath>
 
-#include "src/sqrt5/sqrt5_test_util.hpp"
+#include "raycast/exact/raycast_renderer.hpp"
+#include "src/image/metrics.hpp"
+#include "src/scene/load.hpp"
+#include "src/sqrt5/sqrt5_renderer.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/frames.hpp"
+#include "tests/support/options.hpp"
+#include "tests/support/reference.hpp"
+#include "tests/support/render.hpp"
 
 namespace lzb::sqrt5 {
 namespace {
-
-using namespace testing;
 
 Sqrt5Params defaults() { return parseSqrt5Options({}); }
 
@@ -22,11 +28,11 @@ Sqrt5Params defaults() { return parseSqrt5Options({}); }
 TEST(Sqrt5Renderer, NoHolesOnDisplacedSurfacesAtTheRequestedDensity) {
   for (const char* spec : {"builtin:displaced", "builtin:displaced?shape=sphere"}) {
     const Scene scene = loadScene(spec, true);
-    const Camera cam = defaultCamera(scene, 160, 120);
-    Sqrt5Renderer r(scene, options(), defaults());
-    const Framebuffer image = render(r, cam);
-    const Framebuffer ref = exact(scene, cam);
-    const size_t h = holes(image, ref), c = covered(ref);
+    const Camera cam = test::sceneCamera(scene, 160, 120);
+    Sqrt5Renderer r(scene, test::renderOptions("sqrt5", 2), defaults());
+    const Framebuffer image = test::renderFrame(r, cam);
+    const Framebuffer ref = test::exactFrame(scene, cam, test::renderOptions("sqrt5", 2));
+    const size_t h = test::holes(image, ref), c = test::covered(ref);
     std::printf("%s: %zu holes of %zu covered pixels\n", spec, h, c);
     EXPECT_GT(c, 4000u);
     EXPECT_LE(double(h), 0.002 * double(c)) << spec;
@@ -39,9 +45,10 @@ TEST(Sqrt5Renderer, NoHolesOnDisplacedSurfacesAtTheRequestedDensity) {
 // src/scene), so the differences are pixels where the two surfaces cross.
 TEST(Sqrt5Renderer, AccurateAgainstRaycastOnTheDisplacedPlane) {
   const Scene scene = loadScene("builtin:displaced", true);
-  const Camera cam = defaultCamera(scene, 160, 120);
-  Sqrt5Renderer r(scene, options(), defaults());
-  const Accuracy a = accuracy(scene, cam, render(r, cam));
+  const Camera cam = test::sceneCamera(scene, 160, 120);
+  Sqrt5Renderer r(scene, test::renderOptions("sqrt5", 2), defaults());
+  const Accuracy a =
+      test::accuracy(scene, cam, test::renderFrame(r, cam), test::renderOptions("sqrt5", 2));
   std::printf("displaced: correct_rate_covered %.4f, exact ids %.4f, holes %zu\n",
               a.correctRateCovered, a.exactIdRateCovered, a.missingPixels);
   EXPECT_GT(a.correctRateCovered, 0.98);
@@ -62,7 +69,7 @@ TEST(Sqrt5Renderer, RefinementDepthIsBoundedAtGrazingAngles) {
   for (int levels : {2, 12}) {
     Sqrt5Params p = defaults();
     p.levels = levels;
-    Sqrt5Renderer r(scene, options(), p);
+    Sqrt5Renderer r(scene, test::renderOptions("sqrt5", 2), p);
     const Sqrt5Renderer::Frame f = r.prepare(cam, WorkShare{});
     ASSERT_EQ(f.placements.size(), 1u);
     const Sqrt5Renderer::DrawCounts c = r.draw(f);
@@ -87,16 +94,18 @@ TEST(Sqrt5Renderer, RefinementDepthIsBoundedAtGrazingAngles) {
 // 13,225 initial samples at 160 x 120, 7 % fewer samples generated).
 TEST(Sqrt5Renderer, HorizonCullingNeverChangesTheImage) {
   const Scene scene = loadScene("builtin:terrain?tess=128", true);
-  const Camera cam = defaultCamera(scene, 160, 120);
+  const Camera cam = test::sceneCamera(scene, 160, 120);
   Sqrt5Params off = defaults();
   off.horizon = false;
-  Sqrt5Renderer culling(scene, options(), defaults()), plain(scene, options(), off);
+  Sqrt5Renderer culling(scene, test::renderOptions("sqrt5", 2), defaults()),
+      plain(scene, test::renderOptions("sqrt5", 2), off);
   FrameStats a, b;
-  const Framebuffer on = render(culling, cam, &a), all = render(plain, cam, &b);
+  const Framebuffer on = test::renderFrame(culling, cam, &a),
+                    all = test::renderFrame(plain, cam, &b);
   size_t differ = 0;
   for (size_t i = 0; i < on.size(); ++i) differ += on.id[i] != all.id[i];
   EXPECT_EQ(differ, 0u) << "pixels that differ with culling";
-  EXPECT_TRUE(sameFrame(on, all));
+  EXPECT_TRUE(test::sameIdsAndDepths(on, all));
   EXPECT_EQ(a.shared.value("terrain_sectors", 0.0), 1.0);
   const double culled = a.counts.value("samples_culled_horizon", 0.0),
                initial = a.counts.value("samples_initial", 0.0);
@@ -114,16 +123,18 @@ TEST(Sqrt5Renderer, HorizonCullingNeverChangesTheImage) {
 TEST(Sqrt5Renderer, ForestCacheReusesSamplesWithoutChangingTheImage) {
   const Scene scene = loadScene("builtin:displaced?tess=128", true);
   CameraSpec spec = *scene.camera;
-  const Camera first = defaultCamera(scene, 160, 120);
+  const Camera first = test::sceneCamera(scene, 160, 120);
   spec.position += glm::dvec3(0.05, -0.05, 0.02);
   const Camera second(withClipPlanes(spec, scene.bounds()), 160, 120);
   Sqrt5Params none = defaults();
   none.cacheMb = 0;
-  Sqrt5Renderer cached(scene, options(), defaults()), fresh(scene, options(), none);
+  Sqrt5Renderer cached(scene, test::renderOptions("sqrt5", 2), defaults()),
+      fresh(scene, test::renderOptions("sqrt5", 2), none);
   FrameStats s1, s2, s3;
-  render(cached, first, &s1);
-  const Framebuffer a = render(cached, second, &s2), b = render(fresh, second, &s3);
-  EXPECT_TRUE(sameFrame(a, b));
+  test::renderFrame(cached, first, &s1);
+  const Framebuffer a = test::renderFrame(cached, second, &s2),
+                    b = test::renderFrame(fresh, second, &s3);
+  EXPECT_TRUE(test::sameIdsAndDepths(a, b));
   const double hits = s2.counts.value("cache_hits", 0.0), misses = s2.counts.value("cache_misses", 0.0);
   std::printf("cache: frame 2 hits %.0f, misses %.0f, %.1f MB; uncached generated %.0f samples\n",
               hits, misses, s2.counts.value("cache_bytes", 0.0) / 1e6,
@@ -138,24 +149,25 @@ TEST(Sqrt5Renderer, ForestCacheReusesSamplesWithoutChangingTheImage) {
 // placements together).
 TEST(Sqrt5Renderer, SameFrameForAnyThreadsAndShares) {
   const Scene scene = loadScene("builtin:displaced?shape=sphere&tess=64", true);
-  const Camera cam = defaultCamera(scene, 96, 72);
-  Sqrt5Renderer one(scene, options(1), defaults()), two(scene, options(2), defaults());
-  const Framebuffer a = render(one, cam), b = render(two, cam);
-  EXPECT_TRUE(sameFrame(a, b));
+  const Camera cam = test::sceneCamera(scene, 96, 72);
+  Sqrt5Renderer one(scene, test::renderOptions("sqrt5", 1), defaults()),
+      two(scene, test::renderOptions("sqrt5", 2), defaults());
+  const Framebuffer a = test::renderFrame(one, cam), b = test::renderFrame(two, cam);
+  EXPECT_TRUE(test::sameIdsAndDepths(a, b));
   Framebuffer shares(cam.width(), cam.height());
   uint64_t drawn = 0;
   int working = 0;
   for (int rank = 0; rank < 3; ++rank) {
     FrameStats s;
-    Sqrt5Renderer r(scene, options(1), defaults());
-    compositeNearer(shares, render(r, cam, &s, WorkShare{rank, 3}));
+    Sqrt5Renderer r(scene, test::renderOptions("sqrt5", 1), defaults());
+    compositeNearer(shares, test::renderFrame(r, cam, &s, WorkShare{rank, 3}));
     const uint64_t mine = s.counts.value("samples_drawn", 0.0);
     drawn += mine;
     working += mine > 0;
   }
-  EXPECT_TRUE(sameFrame(a, shares));
+  EXPECT_TRUE(test::sameIdsAndDepths(a, shares));
   FrameStats all;
-  render(one, cam, &all);
+  test::renderFrame(one, cam, &all);
   EXPECT_EQ(drawn, uint64_t(all.counts.value("samples_drawn", 0.0)));
   EXPECT_GE(working, 2);  // the work was split
 }
@@ -165,11 +177,12 @@ TEST(Sqrt5Renderer, SameFrameForAnyThreadsAndShares) {
 // threads and for 3 ranks' shares composited, the triangles dealt like the samples.
 TEST(Sqrt5Renderer, PolygonPlacementsMixWithPointsAndSplitLikeTheRest) {
   const Scene scene = loadScene("builtin:sphereflake?depth=2", true);
-  const Camera cam = defaultCamera(scene, 160, 120);
-  Sqrt5Renderer one(scene, options(1), defaults()), two(scene, options(2), defaults());
+  const Camera cam = test::sceneCamera(scene, 160, 120);
+  Sqrt5Renderer one(scene, test::renderOptions("sqrt5", 1), defaults()),
+      two(scene, test::renderOptions("sqrt5", 2), defaults());
   FrameStats all;
-  const Framebuffer a = render(one, cam, &all), b = render(two, cam);
-  EXPECT_TRUE(sameFrame(a, b));
+  const Framebuffer a = test::renderFrame(one, cam, &all), b = test::renderFrame(two, cam);
+  EXPECT_TRUE(test::sameIdsAndDepths(a, b));
   const double polygons = all.shared.value("placements_polygons", 0.0);
   EXPECT_GT(polygons, 0.0);
   EXPECT_LT(polygons, all.shared.value("placements_visible", 0.0));
@@ -180,13 +193,13 @@ TEST(Sqrt5Renderer, PolygonPlacementsMixWithPointsAndSplitLikeTheRest) {
   int working = 0;
   for (int rank = 0; rank < 3; ++rank) {
     FrameStats s;
-    Sqrt5Renderer r(scene, options(1), defaults());
-    compositeNearer(shares, render(r, cam, &s, WorkShare{rank, 3}));
+    Sqrt5Renderer r(scene, test::renderOptions("sqrt5", 1), defaults());
+    compositeNearer(shares, test::renderFrame(r, cam, &s, WorkShare{rank, 3}));
     const uint64_t mine = s.counts.value("triangles_drawn", 0.0);
     triangles += mine;
     working += mine > 0;
   }
-  EXPECT_TRUE(sameFrame(a, shares));
+  EXPECT_TRUE(test::sameIdsAndDepths(a, shares));
   EXPECT_EQ(triangles, uint64_t(all.counts.value("triangles_drawn", 0.0)));
   EXPECT_GE(working, 2);
 }
@@ -196,12 +209,12 @@ TEST(Sqrt5Renderer, PolygonPlacementsMixWithPointsAndSplitLikeTheRest) {
 // seen at the prefix's density leave some pixels to farther leaves; asserted above 90 %.
 TEST(Sqrt5Renderer, HaltonMeshesAgainstRaycast) {
   const Scene scene = loadScene("builtin:halton-forest?trees=16", true);
-  const Camera cam = defaultCamera(scene, 160, 120);
-  Sqrt5Renderer r(scene, options(), defaults());
+  const Camera cam = test::sceneCamera(scene, 160, 120);
+  Sqrt5Renderer r(scene, test::renderOptions("sqrt5", 2), defaults());
   FrameStats s;
-  const Framebuffer image = render(r, cam, &s);
+  const Framebuffer image = test::renderFrame(r, cam, &s);
   EXPECT_GT(s.counts.value("halton_samples_drawn", 0.0), 0.0);
-  const Accuracy a = accuracy(scene, cam, image);
+  const Accuracy a = test::accuracy(scene, cam, image, test::renderOptions("sqrt5", 2));
   std::printf("halton-forest: correct_rate_covered %.4f, holes %zu\n", a.correctRateCovered,
               a.missingPixels);
   EXPECT_GT(a.correctRateCovered, 0.90);

@@ -8,22 +8,29 @@
 
 #include <cstdio>
 
+#include "raycast/exact/raycast_renderer.hpp"
 #include "src/core/error.hpp"
-#include "src/surfels/surfel_test_util.hpp"
+#include "src/image/metrics.hpp"
+#include "src/scene/load.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/frames.hpp"
+#include "tests/support/meshes.hpp"
+#include "tests/support/options.hpp"
+#include "tests/support/reference.hpp"
+#include "tests/support/render.hpp"
+#include "tests/support/scenes.hpp"
 
 namespace lzb::surfels {
 namespace {
-
-using namespace testing;
 
 SurfelParams defaults() {
   return parseSurfelOptions({});
 }
 
 TEST(SurfelRenderer, NoHolesOnAClosedMeshAtTheChosenLevel) {
-  const Scene scene = spheres({{0.0, 0.0, 0.0}});
-  const Camera cam = lookAt({0.4, 0.7, 4.5}, {0, 0, 0}, 160, 120);
-  const Framebuffer truth = exact(scene, cam);
+  const Scene scene = test::spheres({{0.0, 0.0, 0.0}});
+  const Camera cam = test::lookAtCamera({0.4, 0.7, 4.5}, {0, 0, 0}, 0.05, 1000.0, 160, 120);
+  const Framebuffer truth = test::exactFrame(scene, cam, test::renderOptions("surfels", 2));
   for (int sprite : {1, 2, 4})
     for (bool disc : {false, true})
       for (bool drop : {true, false})
@@ -33,71 +40,74 @@ TEST(SurfelRenderer, NoHolesOnAClosedMeshAtTheChosenLevel) {
           p.disc = disc;
           p.dropBackfaces = drop;
           p.surfelize = how;
-          SurfelRenderer r(scene, options(), p);
+          SurfelRenderer r(scene, test::renderOptions("surfels", 2), p);
           FrameStats stats;
-          const Framebuffer image = render(r, cam, &stats);
+          const Framebuffer image = test::renderFrame(r, cam, &stats);
           const std::string what = "sprite " + std::to_string(sprite) +
                                    (disc ? " disc" : " square") + (drop ? " drop" : " keep") +
                                    (how == Surfelizer::kRaster ? " raster" : " shots");
           ASSERT_EQ(stats.shared["placements_surfels"], 1.0) << what;  // drawn as surfels
-          EXPECT_EQ(holes(image, truth), 0u) << what << ", " << stats.shared.dump();
+          EXPECT_EQ(test::holes(image, truth), 0u) << what << ", " << stats.shared.dump();
         }
 }
 
 TEST(SurfelRenderer, CoarserCellsThanTheSpriteCoversOpenHoles) {
   // The control of the test above: cells four times the hole-free size must leave holes.
-  const Scene scene = spheres({{0.0, 0.0, 0.0}});
-  const Camera cam = lookAt({0.4, 0.7, 4.5}, {0, 0, 0}, 160, 120);
+  const Scene scene = test::spheres({{0.0, 0.0, 0.0}});
+  const Camera cam = test::lookAtCamera({0.4, 0.7, 4.5}, {0, 0, 0}, 0.05, 1000.0, 160, 120);
   // The rule is a worst case (the box's nearest corner, the cube's whole extent, grids in powers
   // of two): at 2.0 it picks 128^3, whose cells project to 0.63 px at the sphere's front (no
   // holes); 4.0 picks 64^3, 1.27 px cells against 1-pixel sprites.
   SurfelParams p = defaults();
   p.cellFraction = 4.0;
-  SurfelRenderer r(scene, options(), p);
+  SurfelRenderer r(scene, test::renderOptions("surfels", 2), p);
   FrameStats stats;
-  const Framebuffer image = render(r, cam, &stats);
+  const Framebuffer image = test::renderFrame(r, cam, &stats);
   ASSERT_EQ(stats.shared["placements_surfels"], 1.0);
   ASSERT_EQ(stats.shared["grid_placements"].value("64", 0.0), 1.0) << stats.shared.dump();
-  EXPECT_GT(holes(image, exact(scene, cam)), 50u);
+  EXPECT_GT(test::holes(image, test::exactFrame(scene, cam, test::renderOptions("surfels", 2))),
+            50u);
 }
 
 TEST(SurfelRenderer, ShowsVisibleTrianglesOnAScannedMeshAtTheDefaults) {
-  const std::string mesh = lzb::testing::scannedMesh("armadillo.off");
+  const std::string mesh = test::scannedMesh("armadillo.off");
   if (mesh.empty()) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
   const Scene scene = loadScene(mesh, true);
   // At 320 px the mesh's cube projects over 256 px, so even 512^3 cells exceed half a 1-pixel
   // sprite: the defaults draw it as polygons (below); 80 and 160 px draw surfels of two levels.
   for (int width : {80, 160}) {
-    const Camera cam = lzb::testing::pathFrame(scene, 1, 4, width, width * 3 / 4);
-    SurfelRenderer r(scene, options(), defaults());
+    const Camera cam = test::pathFrame(scene, 1, 4, width, width * 3 / 4);
+    SurfelRenderer r(scene, test::renderOptions("surfels", 2), defaults());
     FrameStats stats;
-    const Framebuffer image = render(r, cam, &stats);
+    const Framebuffer image = test::renderFrame(r, cam, &stats);
     ASSERT_EQ(stats.shared["placements_surfels"], 1.0) << "width " << width;
     std::printf("width %d: %s\n", width, stats.shared["grid_placements"].dump().c_str());
-    const Accuracy a = accuracy(scene, cam, image);
+    const Accuracy a = test::accuracy(scene, cam, image, test::renderOptions("surfels", 2));
     EXPECT_GE(a.correctRateCovered, 0.90) << "width " << width << ": " << toJson(a).dump();
     EXPECT_EQ(a.missingPixels, 0u) << "width " << width;
   }
-  const Camera near = lzb::testing::pathFrame(scene, 1, 4, 320, 240);
-  SurfelRenderer r(scene, options(), defaults());
+  const Camera near = test::pathFrame(scene, 1, 4, 320, 240);
+  SurfelRenderer r(scene, test::renderOptions("surfels", 2), defaults());
   FrameStats stats;
-  const Framebuffer image = render(r, near, &stats);
+  const Framebuffer image = test::renderFrame(r, near, &stats);
   EXPECT_EQ(stats.shared["placements_polygons"], 1.0);
-  EXPECT_GE(accuracy(scene, near, image).correctRateCovered, 0.999);  // the native z-buffer
+  EXPECT_GE(
+      test::accuracy(scene, near, image, test::renderOptions("surfels", 2)).correctRateCovered,
+      0.999);  // the native z-buffer
 }
 
 TEST(SurfelRenderer, NearObjectsStayPolygonsAndAreExact) {
   // One sphere just in front of the camera, one far away.
-  const Scene scene = spheres({{0.0, 0.0, 0.0}, {6.0, 0.0, -60.0}});
-  const Camera cam = lookAt({0.0, 0.0, 2.2}, {0.3, 0.0, -1.0}, 160, 120);
-  SurfelRenderer r(scene, options(), defaults());
+  const Scene scene = test::spheres({{0.0, 0.0, 0.0}, {6.0, 0.0, -60.0}});
+  const Camera cam = test::lookAtCamera({0.0, 0.0, 2.2}, {0.3, 0.0, -1.0}, 0.05, 1000.0, 160, 120);
+  SurfelRenderer r(scene, test::renderOptions("surfels", 2), defaults());
   FrameStats stats;
-  const Framebuffer image = render(r, cam, &stats);
+  const Framebuffer image = test::renderFrame(r, cam, &stats);
   EXPECT_EQ(stats.shared["placements_polygons"], 1.0);
   EXPECT_EQ(stats.shared["placements_surfels"], 1.0);
   EXPECT_EQ(stats.counts["polygon_triangles"], double(scene.nodes[1].mesh.size()));
   // The near sphere (IDs below its triangle count) is the exact image wherever it is visible.
-  const Framebuffer truth = exact(scene, cam);
+  const Framebuffer truth = test::exactFrame(scene, cam, test::renderOptions("surfels", 2));
   const uint64_t n = scene.nodes[1].mesh.size();
   size_t near = 0, same = 0;
   for (size_t i = 0; i < truth.size(); ++i)
@@ -129,10 +139,10 @@ TEST(SurfelRenderer, ChoosesTheCoarsestHoleFreeLevelAndTheSmallestSprite) {
 
 TEST(SurfelRenderer, InstancesShareOneSurfelSetPerObject) {
   const Scene scene = loadScene("builtin:sphereflake?depth=3", true);
-  const Camera cam = lzb::testing::pathFrame(scene, 0, 4, 256, 192);
-  SurfelRenderer r(scene, options(), defaults());
+  const Camera cam = test::pathFrame(scene, 0, 4, 256, 192);
+  SurfelRenderer r(scene, test::renderOptions("surfels", 2), defaults());
   FrameStats stats;
-  render(r, cam, &stats);
+  test::renderFrame(r, cam, &stats);
   EXPECT_EQ(stats.shared["objects_surfels"], 1.0);  // the one sphere node
   EXPECT_GT(stats.shared["placements_surfels"].get<double>(), 500.0);
   double sprites = 0.0;  // every surfel placement has one sprite size
@@ -144,28 +154,29 @@ TEST(SurfelRenderer, InstancesShareOneSurfelSetPerObject) {
   EXPECT_EQ(stats.shared["collector_bytes_per_surfel"], 6.0);
   EXPECT_EQ(stats.shared["id_bytes_per_surfel"], 1.0);  // 200 triangles
   // The cache: a second frame builds nothing.
-  render(r, cam, &stats);
+  test::renderFrame(r, cam, &stats);
   EXPECT_EQ(stats.shared["levels_built"], 0.0);
 }
 
 // The budget as a count: one fraction of every collector, its shuffled prefix.
 TEST(SurfelRenderer, BudgetDrawsTheShuffledPrefixOnAnyThreadsAndRanks) {
   const Scene scene = loadScene("builtin:sphereflake?depth=2", true);
-  const Camera cam = lzb::testing::pathFrame(scene, 0, 4, 200, 150);
+  const Camera cam = test::pathFrame(scene, 0, 4, 200, 150);
   SurfelParams full = defaults();
   full.sprite = 2;
-  SurfelRenderer all(scene, options(), full);
+  SurfelRenderer all(scene, test::renderOptions("surfels", 2), full);
   FrameStats fs;
-  const Framebuffer whole = render(all, cam, &fs);
+  const Framebuffer whole = test::renderFrame(all, cam, &fs);
   const double selected = fs.shared["surfels_selected"].get<double>();
   ASSERT_GT(selected, 10000.0);
 
   SurfelParams p = full;
   p.budgetMs = 2.0;
   p.budgetRate = selected / 8.0 / p.budgetMs;  // buys an eighth
-  SurfelRenderer one(scene, options(1), p), two(scene, options(2), p);
+  SurfelRenderer one(scene, test::renderOptions("surfels", 1), p),
+      two(scene, test::renderOptions("surfels", 2), p);
   FrameStats s1, s2;
-  const Framebuffer a = render(one, cam, &s1), b = render(two, cam, &s2);
+  const Framebuffer a = test::renderFrame(one, cam, &s1), b = test::renderFrame(two, cam, &s2);
   EXPECT_EQ(a.id, b.id);
   EXPECT_EQ(a.depth, b.depth);
   EXPECT_NEAR(s1.shared["budget_fraction"].get<double>(), 0.125, 0.01);
@@ -174,9 +185,9 @@ TEST(SurfelRenderer, BudgetDrawsTheShuffledPrefixOnAnyThreadsAndRanks) {
     Framebuffer composite(cam.width(), cam.height());
     double drawn = 0.0;
     for (int rank = 0; rank < size; ++rank) {
-      SurfelRenderer part(scene, options(1), p);
+      SurfelRenderer part(scene, test::renderOptions("surfels", 1), p);
       FrameStats s;
-      compositeNearer(composite, render(part, cam, &s, {rank, size}));
+      compositeNearer(composite, test::renderFrame(part, cam, &s, {rank, size}));
       drawn += s.counts["surfels_drawn"].get<double>();
     }
     EXPECT_EQ(composite.id, a.id) << size << " ranks";
@@ -198,16 +209,16 @@ TEST(SurfelRenderer, BudgetDrawsTheShuffledPrefixOnAnyThreadsAndRanks) {
 }
 
 TEST(SurfelRenderer, BudgetRateIsMeasuredAtSetUpWhenNotGiven) {
-  const Scene scene = spheres({{0.0, 0.0, 0.0}});
+  const Scene scene = test::spheres({{0.0, 0.0, 0.0}});
   SurfelParams p = defaults();
   p.budgetMs = 5.0;
-  SurfelRenderer r(scene, options(), p);
+  SurfelRenderer r(scene, test::renderOptions("surfels", 2), p);
   EXPECT_GT(r.budgetRate(), 100.0);  // surfels per ms: any machine splats more than 1e5 per second
   EXPECT_GT(r.setupStats().shared["budget_rate_measured_per_ms"].get<double>(), 100.0);
   // Each rank would measure its own rate: several ranks need a given one.
-  const Camera cam = lookAt({0.0, 0.0, 4.5}, {0, 0, 0}, 64, 48);
-  EXPECT_THROW(render(r, cam, nullptr, {0, 2}), InputError);
-  EXPECT_NO_THROW(render(r, cam, nullptr, {0, 1}));
+  const Camera cam = test::lookAtCamera({0.0, 0.0, 4.5}, {0, 0, 0}, 0.05, 1000.0, 64, 48);
+  EXPECT_THROW(test::renderFrame(r, cam, nullptr, {0, 2}), InputError);
+  EXPECT_NO_THROW(test::renderFrame(r, cam, nullptr, {0, 1}));
 }
 
 }  // namespace

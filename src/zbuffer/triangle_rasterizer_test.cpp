@@ -11,18 +11,13 @@
 #include <stdexcept>
 #include <vector>
 
-#include "src/core/test_camera.hpp"
 #include "src/zbuffer/mesh_buffers.hpp"
+#include "tests/support/cameras.hpp"
 
 namespace lzb {
 namespace {
 
 const Rgba8 kGrey = packRgba8(180, 180, 180);
-
-Camera makeCamera(const glm::dvec3& position, const glm::dvec3& lookAt, double n, double f,
-                  int width = 96, int height = 72) {
-  return testing_util::lookAtCamera(position, lookAt, n, f, width, height);
-}
 
 // count random triangles in a cube of side `extent` around the origin, edges about `size`.
 void addSoup(Mesh& m, size_t count, float extent, float size, uint32_t seed) {
@@ -93,7 +88,7 @@ std::vector<uint32_t> iota(size_t n) {
 
 TEST(TriangleRasterizer, ListMatchesRangeInAnyOrderWithDuplicates) {
   const SoupScene s(3000, 0.4f);
-  const Camera camera = makeCamera({0.5, 1.0, 0.0}, {0.0, 0.0, -6.0}, 0.5, 30.0);
+  const Camera camera = test::lookAtCamera({0.5, 1.0, 0.0}, {0.0, 0.0, -6.0}, 0.5, 30.0, 96, 72);
   TriangleRasterizer r(s.scene);
   const uint64_t base = 1000;
   const Framebuffer range =
@@ -133,7 +128,7 @@ TEST(TriangleRasterizer, ListMatchesRangeInAnyOrderWithDuplicates) {
 
 TEST(TriangleRasterizer, IdsCarryIntoTheHighWord) {
   const SoupScene s(500, 0.5f);
-  const Camera camera = makeCamera({0.5, 1.0, 0.0}, {0.0, 0.0, -6.0}, 0.5, 30.0);
+  const Camera camera = test::lookAtCamera({0.5, 1.0, 0.0}, {0.0, 0.0, -6.0}, 0.5, 30.0, 96, 72);
   TriangleRasterizer r(s.scene);
   const uint64_t base = (uint64_t(7) << 32) - 250;  // the soup's IDs cross a 2^32 boundary
   const Framebuffer range =
@@ -159,7 +154,7 @@ TEST(TriangleRasterizer, TwoPassesIntoOneTargetKeepTheNearer) {
   addQuad(scene.nodes[0].mesh, 2.0f, -5.0f);  // triangles 0, 1: big, far
   addQuad(scene.nodes[0].mesh, 0.5f, -4.0f);  // triangles 2, 3: small, near
   scene.finalize();
-  const Camera camera = makeCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.1, 100.0);
+  const Camera camera = test::lookAtCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.1, 100.0, 96, 72);
   TriangleRasterizer r(scene);
   const std::vector<uint32_t> nearList = {3, 2}, farList = {0, 1};
   const glm::dmat4 id(1.0);
@@ -186,7 +181,7 @@ TEST(TriangleRasterizer, TwoPassesIntoOneTargetKeepTheNearer) {
 // in the same buffers, as if there had been no read (nor flush).
 TEST(TriangleRasterizer, ReadKeepsThePassSetOpen) {
   const SoupScene s(3000, 0.3f);
-  const Camera camera = makeCamera({0.5, 1.0, 0.0}, {0.0, 0.0, -6.0}, 0.5, 30.0);
+  const Camera camera = test::lookAtCamera({0.5, 1.0, 0.0}, {0.0, 0.0, -6.0}, 0.5, 30.0, 96, 72);
   TriangleRasterizer r(s.scene);
   const std::vector<uint32_t> all = iota(3000);
   const std::span<const uint32_t> first(all.data(), 1500), second(all.data() + 1500, 1500);
@@ -226,7 +221,7 @@ Scene leaningTriangle() {
 
 TEST(TriangleRasterizer, FarClipDrawsOnlyInFrontWithUnchangedDepths) {
   const Scene scene = leaningTriangle();
-  const Camera camera = makeCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.5, 50.0, 160, 120);
+  const Camera camera = test::lookAtCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.5, 50.0, 160, 120);
   TriangleRasterizer r(scene);
   const std::vector<uint32_t> list = {0};
   const glm::dmat4 id(1.0);
@@ -256,7 +251,7 @@ TEST(TriangleRasterizer, FarClipDrawsOnlyInFrontWithUnchangedDepths) {
 
 TEST(TriangleRasterizer, ClippedNearPassPlusUnclippedFarPassEqualsOnePass) {
   const SoupScene s(1500, 0.4f);
-  const Camera camera = makeCamera({0.5, 1.0, 0.0}, {0.0, 0.0, -6.0}, 0.5, 30.0, 128, 96);
+  const Camera camera = test::lookAtCamera({0.5, 1.0, 0.0}, {0.0, 0.0, -6.0}, 0.5, 30.0, 128, 96);
   const Mesh& mesh = s.scene.nodes[s.soup()].mesh;
   const double plane = 5.3;
   // The far pass: triangles reaching beyond the plane, chosen with a margin because a fragment's
@@ -309,7 +304,7 @@ TEST(TriangleRasterizer, FarClipCanChangeBetweenDraws) {
   addQuad(scene.nodes[0].mesh, 4.0f, -8.0f);  // triangles 0, 1: big, far
   addQuad(scene.nodes[0].mesh, 0.5f, -4.0f);  // triangles 2, 3: small, near
   scene.finalize();
-  const Camera camera = makeCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.1, 100.0);
+  const Camera camera = test::lookAtCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.1, 100.0, 96, 72);
   const glm::dmat4 id(1.0);
   TriangleRasterizer r(scene);
   const size_t side = size_t(camera.width()) * 3 + size_t(camera.width() / 2);
@@ -346,7 +341,7 @@ TEST(TriangleRasterizer, BeginClearsAndResetsCounts) {
   scene.addNode("quad");
   addQuad(scene.nodes[0].mesh, 2.0f, -5.0f);
   scene.finalize();
-  const Camera camera = makeCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.1, 100.0);
+  const Camera camera = test::lookAtCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.1, 100.0, 96, 72);
   TriangleRasterizer r(scene);
   EXPECT_NE(r.description().find("Core Profile"), std::string::npos);
   Framebuffer fb = pass(r, camera, 0.0, [&] { r.drawRange(0, glm::dmat4(1.0), 0, 2, 0); });
@@ -380,7 +375,7 @@ TEST(TriangleRasterizer, TwoRasterizersInterleaveInOneThread) {
   addQuad(scene.nodes[0].mesh, 2.0f, -5.0f);
   addQuad(scene.nodes[0].mesh, 0.5f, -4.0f);
   scene.finalize();
-  const Camera camera = makeCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.1, 100.0);
+  const Camera camera = test::lookAtCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.1, 100.0, 96, 72);
   const glm::dmat4 id(1.0);
   TriangleRasterizer a(scene), b(scene);
   const Framebuffer bigAlone = pass(a, camera, 0.0, [&] { a.drawRange(0, id, 0, 2, 0); });
@@ -402,7 +397,7 @@ TEST(TriangleRasterizer, RejectsMisuse) {
   scene.addNode("quad");
   addQuad(scene.nodes[0].mesh, 2.0f, -5.0f);
   scene.finalize();
-  const Camera camera = makeCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.1, 100.0);
+  const Camera camera = test::lookAtCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.1, 100.0, 96, 72);
   const glm::dmat4 id(1.0);
   TriangleRasterizer r(scene);
   Framebuffer fb;
@@ -426,7 +421,7 @@ TEST(TriangleRasterizer, RejectsMisuse) {
 TEST(TriangleRasterizer, ListOfMillionsAcrossBufferChunks) {
   const size_t n = gl::MeshBuffers::kChunkTriangles + 300'000;
   const SoupScene s(n, 0.02f);
-  const Camera camera = makeCamera({0.5, 1.0, 0.0}, {0.0, 0.0, -6.0}, 0.5, 30.0, 160, 120);
+  const Camera camera = test::lookAtCamera({0.5, 1.0, 0.0}, {0.0, 0.0, -6.0}, 0.5, 30.0, 160, 120);
   TriangleRasterizer r(s.scene);
   const Framebuffer range = pass(r, camera, 0.0, [&] { r.drawRange(s.soup(), s.world, 0, n, 0); });
   EXPECT_EQ(r.counts().drawCalls, 2u);

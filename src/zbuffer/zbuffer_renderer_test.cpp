@@ -11,27 +11,13 @@
 #include <set>
 
 #include "src/core/shading.hpp"
-#include "src/core/test_camera.hpp"
+#include "tests/support/cameras.hpp"
+#include "tests/support/render.hpp"
 
 namespace lzb {
 namespace {
 
 const Rgba8 kGrey = packRgba8(180, 180, 180);
-
-Camera makeCamera(const glm::dvec3& position, const glm::dvec3& lookAt, double n, double f,
-                  int width = 80, int height = 60) {
-  return testing_util::lookAtCamera(position, lookAt, n, f, width, height);
-}
-
-Framebuffer render(const Scene& scene, const Camera& camera, WorkShare share = {},
-                   FrameStats* stats = nullptr) {
-  ZBufferRenderer renderer(scene, RenderOptions{});
-  Framebuffer fb(camera.width(), camera.height());
-  FrameStats local;
-  renderer.render(camera, 0, share, fb, stats ? *stats : local);
-  shadeFromIds(scene, camera, fb);  // as the frame driver does after compositing
-  return fb;
-}
 
 // Where the ray through a pixel centre meets a triangle's plane: t (== view depth, as the ray's
 // direction has forward component 1) and the smallest barycentric (< 0: outside).
@@ -101,8 +87,8 @@ TEST(ZBufferRenderer, SingleTriangleHasItsIdAndAnalyticDepth) {
   const glm::dvec3 a(-2.0, -1.5, -4.0), b(2.5, -1.0, -7.0), c(0.3, 2.0, -5.0);
   ASSERT_TRUE(scene.nodes[0].mesh.add(glm::vec3(a), glm::vec3(b), glm::vec3(c), kGrey));
   scene.finalize();
-  const Camera camera = makeCamera({0.4, 0.3, 1.0}, {0.0, 0.0, -5.0}, 0.5, 50.0);
-  const Framebuffer fb = render(scene, camera);
+  const Camera camera = test::lookAtCamera({0.4, 0.3, 1.0}, {0.0, 0.0, -5.0}, 0.5, 50.0, 80, 60);
+  const Framebuffer fb = test::zbufferFrame(scene, camera, {}, /*shade=*/true);
   int inside = 0, outside = 0;
   const Rgba8 shaded = shadeTriangle(scene, 0, 0, glm::dmat4(1.0), camera.position());
   for (int y = 0; y < fb.height; ++y)
@@ -136,8 +122,8 @@ TEST(ZBufferRenderer, NearerQuadWinsInEitherDrawOrder) {
     addQuad(m, nearFirst ? 0.5 : 2.0, nearFirst ? -4.0 : -5.0);
     addQuad(m, nearFirst ? 2.0 : 0.5, nearFirst ? -5.0 : -4.0);
     scene.finalize();
-    const Camera camera = makeCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.1, 100.0);
-    const Framebuffer fb = render(scene, camera);
+    const Camera camera = test::lookAtCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.1, 100.0, 80, 60);
+    const Framebuffer fb = test::zbufferFrame(scene, camera, {}, /*shade=*/true);
     const std::set<uint64_t> nearIds =
         nearFirst ? std::set<uint64_t>{0, 1} : std::set<uint64_t>{2, 3};
     const size_t centre = fb.index(fb.width / 2, fb.height / 2);
@@ -167,9 +153,10 @@ TEST(ZBufferRenderer, FarFromTheOriginMatchesTheOrigin) {
   const glm::dvec3 far(1e7, -1e7, 1e7);  // float spacing there is 1: a float pipeline would fail
   const glm::dvec3 eye(0.5, 1.25, 3.5), at(0.0, 0.25, 0.0);
   const Scene atOrigin = placedObject(glm::dvec3(0.0)), displaced = placedObject(far);
-  const Camera c0 = makeCamera(eye, at, 0.1, 20.0, 96, 72);
-  const Camera c1 = makeCamera(far + eye, far + at, 0.1, 20.0, 96, 72);
-  const Framebuffer a = render(atOrigin, c0), b = render(displaced, c1);
+  const Camera c0 = test::lookAtCamera(eye, at, 0.1, 20.0, 96, 72);
+  const Camera c1 = test::lookAtCamera(far + eye, far + at, 0.1, 20.0, 96, 72);
+  const Framebuffer a = test::zbufferFrame(atOrigin, c0, {}, /*shade=*/true),
+                    b = test::zbufferFrame(displaced, c1, {}, /*shade=*/true);
   EXPECT_GT(a.coveredCount(), a.size() / 4);
   size_t differentIds = 0;
   for (size_t i = 0; i < a.size(); ++i) {
@@ -195,8 +182,8 @@ TEST(ZBufferRenderer, InstancesGetExpandedIdsInSceneOrder) {
   scene.root = root;
   scene.finalize();
   ASSERT_EQ(scene.expandedTriangles(), 5u);
-  const Camera camera = makeCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.1, 100.0);
-  const Framebuffer fb = render(scene, camera);
+  const Camera camera = test::lookAtCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.1, 100.0, 80, 60);
+  const Framebuffer fb = test::zbufferFrame(scene, camera, {}, /*shade=*/true);
   std::set<uint64_t> seen;
   for (uint64_t id : fb.id)
     if (id != kNoId) seen.insert(id);
@@ -236,16 +223,17 @@ bool sameBits(const std::vector<float>& a, const std::vector<float>& b) {
 
 TEST(ZBufferRenderer, RankSharesCompositeToTheSingleRender) {
   const Scene scene = sharedScene();
-  const Camera camera = makeCamera({2.5, 2.0, 4.0}, {0.0, 0.0, 0.0}, 0.5, 20.0, 120, 90);
+  const Camera camera = test::lookAtCamera({2.5, 2.0, 4.0}, {0.0, 0.0, 0.0}, 0.5, 20.0, 120, 90);
   FrameStats whole;
-  const Framebuffer single = render(scene, camera, {}, &whole);
+  const Framebuffer single = test::zbufferFrame(scene, camera, {}, /*shade=*/true, &whole);
   EXPECT_GT(single.coveredCount(), single.size() / 3);
   for (int size : {2, 3}) {
     Framebuffer composite(camera.width(), camera.height());
     double drawn = 0.0;
     for (int rank = 0; rank < size; ++rank) {
       FrameStats stats;
-      const Framebuffer part = render(scene, camera, {rank, size}, &stats);
+      const Framebuffer part =
+          test::zbufferFrame(scene, camera, {}, /*shade=*/true, &stats, {rank, size});
       EXPECT_LT(part.coveredCount(), single.coveredCount());  // the work really is split
       drawn += stats.counts["triangles_drawn"].get<double>();
       compositeNearer(composite, part);
@@ -275,8 +263,8 @@ TEST(ZBufferRenderer, ResolvesSurfacesATenthOfAPercentApartOverAHugeDepthRange) 
     addQuad(m, farFirst ? 1e4 : 2e3, farFirst ? -farDepth : -nearDepth);
     addQuad(m, farFirst ? 2e3 : 1e4, farFirst ? -nearDepth : -farDepth);
     scene.finalize();
-    const Camera camera = makeCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 1e-3, 1e6);
-    const Framebuffer fb = render(scene, camera);
+    const Camera camera = test::lookAtCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 1e-3, 1e6, 80, 60);
+    const Framebuffer fb = test::zbufferFrame(scene, camera, {}, /*shade=*/true);
     const uint64_t nearQuad = farFirst ? 2 : 0;
     const size_t centre = fb.index(fb.width / 2, fb.height / 2), corner = fb.index(1, 1);
     EXPECT_TRUE(fb.id[centre] == nearQuad || fb.id[centre] == nearQuad + 1) << fb.id[centre];
@@ -295,7 +283,7 @@ TEST(ZBufferRenderer, ReportsStagesAndCullingCounts) {
                                  {quad, glm::translate(glm::dmat4(1.0), {0.0, 0.0, 5.0})}};
   scene.root = root;
   scene.finalize();
-  const Camera camera = makeCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.1, 100.0);
+  const Camera camera = test::lookAtCamera({0.0, 0.0, 0.0}, {0.0, 0.0, -1.0}, 0.1, 100.0, 80, 60);
   ZBufferRenderer renderer(scene, RenderOptions{});
   EXPECT_NE(renderer.glDescription().find("Core Profile"), std::string::npos);
   EXPECT_FALSE(renderer.decomposition().empty());

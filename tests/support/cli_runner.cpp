@@ -1,4 +1,4 @@
-#include "tests/cli_runner.hpp"
+#include "tests/support/cli_runner.hpp"
 
 #include <sys/wait.h>
 #include <unistd.h>
@@ -11,7 +11,7 @@ namespace lzb::test {
 
 RunResult runLzb(const std::string& args, const std::string& shellPrefix) {
   RunResult r;
-  const std::string cmd = shellPrefix + std::string(LZB_BINARY) + " " + args + " 2>&1";
+  const std::string cmd = shellPrefix + lzbBinary().string() + " " + args + " 2>&1";
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return r;
   std::array<char, 4096> buf;
@@ -22,8 +22,7 @@ RunResult runLzb(const std::string& args, const std::string& shellPrefix) {
 }
 
 std::string mpiexecPrefix(int ranks, int timeoutSeconds) {
-  const std::filesystem::path sessions =
-      std::filesystem::path(LZB_WORK_DIR) / "mpi-sessions" / std::to_string(getpid());
+  const std::filesystem::path sessions = workDir() / "mpi-sessions" / std::to_string(getpid());
   return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_orte_tmpdir_base=" +
          sessions.string() + " " +
          (timeoutSeconds > 0 ? "timeout " + std::to_string(timeoutSeconds) + " " : "") +
@@ -31,7 +30,7 @@ std::string mpiexecPrefix(int ranks, int timeoutSeconds) {
 }
 
 std::filesystem::path freshDir(const std::string& name) {
-  const std::filesystem::path dir = std::filesystem::path(LZB_WORK_DIR) / name;
+  const std::filesystem::path dir = workDir() / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
@@ -42,6 +41,14 @@ nlohmann::json readJson(const std::filesystem::path& file) {
   return nlohmann::json::parse(in);
 }
 
-std::filesystem::path dataDir() { return LZB_DATA_DIR; }
+std::filesystem::path lzbBinary() {
+  return LZB_BINARY;
+}
+
+std::filesystem::path workDir() {
+  // One library for every test program: each finds its own folder from its executable's path.
+  std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe");
+  return exe += "_out";
+}
 
 }  // namespace lzb::test

@@ -1,14 +1,17 @@
 #pragma once
-// Random geometry for the octree tests (test-only header).
+// Random geometry for the octree and sample-tree tests (inline: over those folders' own types,
+// linked by the tests that use them).
 #include <cmath>
+#include <cstdint>
 #include <glm/glm.hpp>
 #include <random>
 #include <vector>
 
 #include "src/core/scene.hpp"
 #include "src/octree/octree.hpp"
+#include "src/sampletree/tree_input.hpp"
 
-namespace lzb::testutil {
+namespace lzb::test {
 
 // n triangles in [-1, 1]^3: most small, in a few dense blobs (so the tree gets deep), and a
 // fraction `large` spanning a good part of the region (so triangles cross many leaves).
@@ -41,6 +44,7 @@ inline Mesh randomMesh(size_t n, uint64_t seed, double large = 0.02) {
   return mesh;
 }
 
+// Corner k of triangle t in double.
 inline glm::dvec3 vertex(const Mesh& m, uint32_t t, int k) {
   return glm::dvec3(m.vertex(t, k));
 }
@@ -54,7 +58,7 @@ inline std::vector<uint32_t> nonEmptyLeaves(const Octree& tree) {
 }
 
 // A random rigid motion with uniform scale, optionally mirrored.
-inline glm::dmat4 randomTransform(std::mt19937_64& rng, bool mirror) {
+inline glm::dmat4 randomRigidMotion(std::mt19937_64& rng, bool mirror) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   glm::dvec3 axis{u(rng), u(rng), u(rng)};
   axis = glm::normalize(axis + glm::dvec3(1e-3));
@@ -70,4 +74,18 @@ inline glm::dmat4 randomTransform(std::mt19937_64& rng, bool mirror) {
   return m;
 }
 
-}  // namespace lzb::testutil
+// n triangles scattered in the unit cube, sides up to `maxSide`, colours and IDs in order.
+inline sampletree::TriangleInput scatteredTriangles(size_t n, float maxSide, uint32_t seed = 7) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f), offset(-maxSide, maxSide);
+  sampletree::TriangleInput in;
+  for (size_t t = 0; t < n; ++t) {
+    const glm::vec3 a(unit(rng), unit(rng), unit(rng));
+    const glm::vec3 b = a + glm::vec3(offset(rng), offset(rng), offset(rng));
+    const glm::vec3 c = a + glm::vec3(offset(rng), offset(rng), offset(rng));
+    in.add(a, b, c, t, Rgba8(rng()) | 0xff000000u);
+  }
+  return in;
+}
+
+}  // namespace lzb::test

@@ -1,16 +1,18 @@
 #pragma once
-// Helpers shared by the scene tests: a scratch directory and file writing.
+// The tests' files: a scratch folder per test, the bytes of a file, the message of an InputError.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include "src/core/error.hpp"
 
-namespace lzb::testing_util {
+namespace lzb::test {
 
 // A fresh directory per test, removed afterwards.
 class ScratchDir {
@@ -38,6 +40,12 @@ class ScratchDir {
   std::filesystem::path path_;
 };
 
+// A file's bytes (stores are compared and damaged byte by byte).
+inline std::vector<char> fileBytes(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 // Runs f, expects an InputError, and returns its message (empty if none was thrown).
 template <typename F>
 std::string errorOf(F&& f) {
@@ -53,4 +61,4 @@ std::string errorOf(F&& f) {
   return "";
 }
 
-}  // namespace lzb::testing_util
+}  // namespace lzb::test

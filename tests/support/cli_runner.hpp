@@ -1,9 +1,8 @@
 #pragma once
-// Runs the lzb program from tests and reads what it wrote.
+// The program's tests: run the lzb program and read what it wrote.
 #include <filesystem>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace lzb::test {
 
@@ -19,9 +18,12 @@ RunResult runLzb(const std::string& args, const std::string& shellPrefix = "");
 // is above 0, allowed as root, with an Open MPI session folder of this test process's own
 // (CMakeLists.txt, lzb_mpi_tests, says why).
 std::string mpiexecPrefix(int ranks, int timeoutSeconds = 0);
+// The lzb program the tests run.
+std::filesystem::path lzbBinary();
+// The test program's work folder: next to its executable, NAME_out.
+std::filesystem::path workDir();
 // A fresh, empty folder under the test work dir.
 std::filesystem::path freshDir(const std::string& name);
 nlohmann::json readJson(const std::filesystem::path& file);
-std::filesystem::path dataDir();
 
 }  // namespace lzb::test
