@@ -2,7 +2,6 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <iterator>
 #include <string>
 #include <utility>
 
@@ -10,6 +9,7 @@
 
 #include "src/image/frame_io.hpp"
 #include "tests/support/cli_runner.hpp"
+#include "tests/support/files.hpp"
 #include "tests/support/meshes.hpp"
 
 namespace lzb::test {
@@ -285,12 +285,6 @@ TEST(Render, LzbRefusesASceneTooInstancedToCullAndLeavesNoFolder) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-// The bytes of a file, to compare two runs' images.
-std::string bytesOf(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
 TEST(Batch, RendersEachLineAsItsOwnRenderWithNoOptionCarriedOver) {
   const fs::path dir = freshDir("batch");
   const std::string render = "'builtin:sphereflake?depth=1' --method rzb --frames 1 --width 32 "
@@ -304,8 +298,8 @@ TEST(Batch, RendersEachLineAsItsOwnRenderWithNoOptionCarriedOver) {
   EXPECT_EQ(readJson(dir / "a" / "report.json")["method_parameters"]["splat"], 3);
   // The second line left --splat alone: the default again, not the first line's 3.
   EXPECT_EQ(readJson(dir / "b" / "report.json")["method_parameters"]["splat"], 1);
-  EXPECT_EQ(bytesOf(dir / "b" / "frame_0000.exr"), bytesOf(dir / "c" / "frame_0000.exr"));
-  EXPECT_NE(bytesOf(dir / "a" / "frame_0000.exr"), bytesOf(dir / "c" / "frame_0000.exr"));
+  EXPECT_EQ(fileBytes(dir / "b" / "frame_0000.exr"), fileBytes(dir / "c" / "frame_0000.exr"));
+  EXPECT_NE(fileBytes(dir / "a" / "frame_0000.exr"), fileBytes(dir / "c" / "frame_0000.exr"));
 }
 
 TEST(Batch, ABadLineIsRefusedNamingItsLineBeforeAnyRender) {
