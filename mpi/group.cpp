@@ -61,9 +61,16 @@ std::string privateSessionFolder() {
   return folder;
 }
 
+// A singleton runs alone: without a daemon (orted) of its own, which it would start only to spawn
+// processes, as lzb never does. Unless the user chose otherwise.
+void isolateSingleton() {
+  if (!launched()) setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
+}
+
 }  // namespace
 
 Session::Session(int* argc, char*** argv, bool threadsCallMpi) : privateTmp_(privateSessionFolder()) {
+  isolateSingleton();
   int provided = 0;
   // OpenMP threads never call MPI; only the node server's threads need more than FUNNELED.
   LZB_MPI_CALL(MPI_Init_thread(argc, argv, threadsCallMpi ? MPI_THREAD_MULTIPLE : MPI_THREAD_FUNNELED,
