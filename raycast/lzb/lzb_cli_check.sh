@@ -11,16 +11,21 @@ set -euo pipefail
 lzb="$1" work="$2"
 rm -rf "$work" && mkdir -p "$work"
 
-# stage[:near z-buffer:PVL z-buffer[:far rays]]
-for run in naive lazy selective oor final final:gl:gl final:gl:native final:native:gl naive:gl \
-  selective:native:native:walk final:native:native:walk; do
+# stage[:near z-buffer:PVL z-buffer[:far rays]]; every run in one `lzb batch` (one program start).
+runs=(naive lazy selective oor final final:gl:gl final:gl:native final:native:gl naive:gl
+  selective:native:native:walk final:native:native:walk)
+for run in "${runs[@]}"; do
+  IFS=: read -r stage near render rays <<<"$run"
+  near="${near:-native}" render="${render:-native}" rays="${rays:-embree}" reference=zbuffer
+  [ "$stage" != naive ] || reference=raycast
+  echo "builtin:city?blocks=4 --method lzb --lzb-stage $stage --near-render $near" \
+    "--pvl-render $render --lzb-rays $rays --reference $reference --frames 2 --width 192" \
+    "--height 144 --threads 2 --quiet --out '$work/${run//:/-}'"
+done > "$work/runs.batch"
+"$lzb" batch "$work/runs.batch" --quiet >/dev/null
+for run in "${runs[@]}"; do
   IFS=: read -r stage near render rays <<<"$run"
   near="${near:-native}" render="${render:-native}" rays="${rays:-embree}" out="$work/${run//:/-}"
-  reference=zbuffer
-  [ "$stage" != naive ] || reference=raycast
-  "$lzb" render "builtin:city?blocks=4" --method lzb --lzb-stage "$stage" --near-render "$near" \
-    --pvl-render "$render" --lzb-rays "$rays" --reference "$reference" --frames 2 --width 192 --height 144 --threads 2 \
-    --quiet --out "$out" >/dev/null
   python3 - "$out/report.json" "$stage" "$near" "$render" "$rays" <<'PY'
 import json, sys
 report, stage, near, render, rays = json.load(open(sys.argv[1])), *sys.argv[2:]

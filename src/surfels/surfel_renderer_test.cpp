@@ -29,7 +29,9 @@ SurfelParams defaults() {
 
 TEST(SurfelRenderer, NoHolesOnAClosedMeshAtTheChosenLevel) {
   const Scene scene = test::spheres({{0.0, 0.0, 0.0}});
-  const Camera cam = test::lookAtCamera({0.4, 0.7, 4.5}, {0, 0, 0}, 0.05, 1000.0, 160, 120);
+  // 80x60: the sphere spans ~30 px, and the levels chosen for it (128^3 to 512^3 by sprite and
+  // shape) cost a quarter of what twice the pixels would pick; the rule is the same at any size.
+  const Camera cam = test::lookAtCamera({0.4, 0.7, 4.5}, {0, 0, 0}, 0.05, 1000.0, 80, 60);
   const Framebuffer truth = test::exactFrame(scene, cam, test::renderOptions("surfels", 2));
   for (int sprite : {1, 2, 4})
     for (bool disc : {false, true})
@@ -47,6 +49,7 @@ TEST(SurfelRenderer, NoHolesOnAClosedMeshAtTheChosenLevel) {
                                    (disc ? " disc" : " square") + (drop ? " drop" : " keep") +
                                    (how == Surfelizer::kRaster ? " raster" : " shots");
           ASSERT_EQ(stats.shared["placements_surfels"], 1.0) << what;  // drawn as surfels
+          std::printf("%s: %s\n", what.c_str(), stats.shared["grid_placements"].dump().c_str());
           EXPECT_EQ(test::holes(image, truth), 0u) << what << ", " << stats.shared.dump();
         }
 }
