@@ -4,7 +4,6 @@
 #include <cmath>
 #include <map>
 #include <set>
-#include <stdexcept>
 
 #include "mpi/decomposition.hpp"
 #include "src/core/error.hpp"
@@ -108,20 +107,14 @@ void SurfelRenderer::applyBudget(Frame& f) const {
 }
 
 void SurfelRenderer::deal(Frame& f) const {
-  f.items.clear();
-  std::vector<double> costs;
+  f.items = {};
   for (uint32_t i = 0; i < f.placements.size(); ++i) {
-    if (f.placements[i].level == kPolygons) {
-      f.items.push_back({i, 0, 0});
-      costs.push_back(double(f.work[i]) * kTriangleCost);
-      continue;
-    }
-    for (uint64_t b = 0; b < f.work[i]; b += kJobSurfels) {
-      f.items.push_back({i, b, std::min(f.work[i], b + kJobSurfels)});
-      costs.push_back(double(f.items.back().end - b));
-    }
+    if (f.placements[i].level == kPolygons)
+      f.items.addPolygons(i, f.work[i]);
+    else
+      f.items.addRuns(i, f.work[i]);
   }
-  f.mine = dealByCost(costs, f.share);
+  f.mine = dealByCost(f.items.costs, f.share);
 }
 
 void SurfelRenderer::drawPolygons(const Frame& f, Framebuffer& fb, FrameStats& stats) {
@@ -150,7 +143,7 @@ void SurfelRenderer::drawSurfelPass(const Frame& f, FrameStats& stats) {
   std::vector<SurfelJob> jobs;
   uint32_t last = ~0u;  // items of one placement are consecutive
   for (uint32_t k : f.mine) {
-    const SurfelJob& item = f.items[k];
+    const PlacementJob& item = f.items[k];
     const Placement& p = f.placements[item.placed];
     if (p.level == kPolygons) continue;
     if (item.placed != last) {
@@ -179,8 +172,7 @@ void SurfelRenderer::combine(Framebuffer& fb) {
 
 void SurfelRenderer::render(const Camera& camera, int frame, const WorkShare& share,
                             Framebuffer& fb, FrameStats& stats) {
-  if (fb.width != camera.width() || fb.height != camera.height())
-    throw std::invalid_argument("surfels: framebuffer and camera sizes differ");
+  requireFrameSize(fb, camera, "surfels");
   // A measured rate is this rank's own: ranks that disagree on the budget would deal different
   // surfel runs, drawing some twice and leaving others out of the prefix.
   require(
@@ -314,7 +306,7 @@ void SurfelRenderer::measureRate() {
   const PlacedLevel placed = PlacedLevel::make(level, glm::dmat4(1.0), 0, camera, params_.sprite,
                                                level.collector.size(), params_.dropBackfaces);
   const uint32_t one = 0;
-  const std::vector<SurfelJob> jobs = makeJobs({&placed, 1}, {&one, 1}, kJobSurfels);
+  const std::vector<SurfelJob> jobs = makeJobs({&placed, 1}, {&one, 1}, kJobPoints);
   KeyBuffer keys;
   double seconds = 0.0;
   constexpr int kRounds = 3;
