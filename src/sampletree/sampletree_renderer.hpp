@@ -68,6 +68,7 @@ class SampleTreeRenderer : public Renderer {
   };
 
  private:
+  // The stages, timed as traverse (the first two), splat, triangles; then shade and approximated.
   void traverseAndDeal(Frame& f) const;
   void prefetchBelow(const Frame& f);
   void splat(Frame& f, Framebuffer& fb);

@@ -28,7 +28,6 @@ Sqrt5Renderer::Sqrt5Renderer(const Scene& scene, const RenderOptions& options,
   options_.threads = std::max(options_.threads, 1);
   meshBounds_.resize(scene.nodes.size());
   halton_.resize(scene.nodes.size());
-  allTriangles_.resize(scene.nodes.size());
   for (size_t n = 0; n < scene.nodes.size(); ++n) {
     Bounds& b = meshBounds_[n];
     for (const glm::vec3& v : scene.nodes[n].mesh.positions) b.extend(glm::dvec3(v));
@@ -229,13 +228,7 @@ std::pair<uint64_t, uint64_t> Sqrt5Renderer::drawPolygons(const Frame& f, Frameb
     const PlacementJob& job = f.jobs[k];
     if (f.polygons[job.placed] == 0) continue;
     const Placement& p = f.placements[job.placed];
-    std::vector<uint32_t>& all = allTriangles_[p.node];
-    if (all.empty()) {
-      all.resize(scene_.nodes[p.node].mesh.size());
-      for (uint32_t t = 0; t < all.size(); ++t) all[t] = t;
-    }
-    lists.lists.push_back({p.node, p.world, p.idBase, all});
-    lists.triangles += all.size();
+    wholeNodes_.add(lists, p.node, p.world, p.idBase, scene_.nodes[p.node].mesh.size());
   }
   if (!lists.lists.empty()) raster_.draw(scene_, *f.camera, lists, {}, options_.threads, fb);
   return {lists.lists.size(), lists.triangles};

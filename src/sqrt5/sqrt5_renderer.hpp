@@ -110,7 +110,7 @@ class Sqrt5Renderer : public Renderer {
   Sqrt5Params params_;
   std::vector<Bounds> meshBounds_;                      // per node: its own surface
   std::vector<std::unique_ptr<HaltonSurface>> halton_;  // per mesh node, built on first use
-  std::vector<std::vector<uint32_t>> allTriangles_;     // per mesh node drawn as polygons: 0..m-1
+  WholeNodeLists wholeNodes_;                           // mesh nodes drawn as polygons
   ForestCache cache_;
   NativeRasterizer raster_;
   KeyBuffer keys_;

@@ -30,7 +30,6 @@ SurfelRenderer::SurfelRenderer(const Scene& scene, const RenderOptions& options,
   domains_.resize(scene.nodes.size());
   meshBounds_.resize(scene.nodes.size());
   levels_.resize(scene.nodes.size());
-  allTriangles_.resize(scene.nodes.size());
   for (size_t n = 0; n < scene.nodes.size(); ++n) {
     if (scene.nodes[n].mesh.empty()) continue;
     domains_[n] = Domain::around(scene.nodes[n].mesh);
@@ -123,13 +122,7 @@ void SurfelRenderer::drawPolygons(const Frame& f, Framebuffer& fb, FrameStats& s
   for (uint32_t k : f.mine) {
     const Placement& p = f.placements[f.items[k].placed];
     if (p.level != kPolygons) continue;
-    std::vector<uint32_t>& all = allTriangles_[p.node];
-    if (all.empty()) {
-      all.resize(scene_.nodes[p.node].mesh.size());
-      for (uint32_t t = 0; t < all.size(); ++t) all[t] = t;
-    }
-    lists.lists.push_back({p.node, p.world, p.idBase, all});
-    lists.triangles += all.size();
+    wholeNodes_.add(lists, p.node, p.world, p.idBase, scene_.nodes[p.node].mesh.size());
     ++placements;
   }
   if (!lists.lists.empty()) raster_.draw(scene_, *f.camera, lists, {}, options_.threads, fb);

@@ -85,7 +85,7 @@ class SurfelRenderer : public Renderer {
   std::vector<Domain> domains_;                                    // per node
   std::vector<Bounds> meshBounds_;                                 // per node: its own triangles
   std::vector<std::vector<std::unique_ptr<SurfelLevel>>> levels_;  // [node][level]
-  std::vector<std::vector<uint32_t>> allTriangles_;                // per node, for draw lists
+  WholeNodeLists wholeNodes_;                                      // placements as polygons
   NativeRasterizer raster_;
   KeyBuffer keys_;
   Framebuffer points_;
