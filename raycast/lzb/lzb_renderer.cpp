@@ -5,11 +5,10 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
-#include <stdexcept>
 
+#include "mpi/decomposition.hpp"
 #include "raycast/lzb/lzb_cull.hpp"
 #include "raycast/lzb/lzb_oor.hpp"
-#include "mpi/decomposition.hpp"
 #include "src/core/shading.hpp"
 #include "src/core/timer.hpp"
 
@@ -111,8 +110,7 @@ FrameStats LzbRenderer::setupStats() const {
 
 void LzbRenderer::render(const Camera& camera, int /*frame*/, const WorkShare& share,
                          Framebuffer& fb, FrameStats& stats) {
-  if (fb.width != camera.width() || fb.height != camera.height())
-    throw std::invalid_argument("lzb: framebuffer and camera sizes differ");
+  requireFrameSize(fb, camera, "lzb");
   Frame f;
   f.camera = &camera;
   f.share = share;

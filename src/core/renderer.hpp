@@ -75,4 +75,8 @@ class Renderer {
   virtual FrameStats setupStats() const { return {}; }
 };
 
+// render()'s precondition: fb is the camera's size. Throws std::invalid_argument naming
+// `renderer` otherwise (a caller's bug, not bad input).
+void requireFrameSize(const Framebuffer& fb, const Camera& camera, const std::string& renderer);
+
 }  // namespace lzb

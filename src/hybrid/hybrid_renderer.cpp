@@ -3,17 +3,17 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <stdexcept>
 
 #include "mpi/decomposition.hpp"
 #include "src/core/error.hpp"
 #include "src/core/timer.hpp"
+#include "src/splat/splatter.hpp"
 
 namespace lzb::hybrid {
 
 void HybridParams::validate() const {
   require(oversample > 0.0 && oversample <= 1000.0, "--oversample", "must be in (0, 1000]");
-  require(splat >= 1 && splat <= 64, "--splat", "must be in [1, 64]");
+  validateSplat(splat);
   require(fallbackPx >= 0.0 && std::isfinite(fallbackPx), "--fallback",
           "must be 'auto' or a pixel area > 0 for the hybrid");
   localz::validate(lzb);
@@ -94,8 +94,7 @@ FrameStats HybridRenderer::setupStats() const {
 
 void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& share,
                             Framebuffer& fb, FrameStats& stats) {
-  if (fb.width != camera.width() || fb.height != camera.height())
-    throw std::invalid_argument("hybrid: framebuffer and camera sizes differ");
+  requireFrameSize(fb, camera, "hybrid");
   localz::LzbRenderer::Frame f;
   f.camera = &camera;
   f.share = share;

@@ -341,12 +341,10 @@ PointCounts splatLeaves(const localz::LzbAccel& accel, const LeafAreas& areas,
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (long p = 0; p < paths; ++p)
     if (used[size_t(p)]) views[size_t(p)] = pathView(culled.paths[size_t(p)], camera);
-  const bool pixel = params.splat == 1;
-  if (keys.wide())
-    return pixel ? runJobs<true, true>(accel, areas, culled, leaves, mine, jobs, views, camera, params, stream, keys, threads)
-                 : runJobs<true, false>(accel, areas, culled, leaves, mine, jobs, views, camera, params, stream, keys, threads);
-  return pixel ? runJobs<false, true>(accel, areas, culled, leaves, mine, jobs, views, camera, params, stream, keys, threads)
-               : runJobs<false, false>(accel, areas, culled, leaves, mine, jobs, views, camera, params, stream, keys, threads);
+  return withSplatter(keys, params.splat, [&]<bool kWide, bool kPixel>() {
+    return runJobs<kWide, kPixel>(accel, areas, culled, leaves, mine, jobs, views, camera, params,
+                                  stream, keys, threads);
+  });
 }
 
 }  // namespace lzb::hybrid

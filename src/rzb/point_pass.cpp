@@ -127,12 +127,9 @@ void appendJobs(std::vector<SplatJob>& jobs, uint32_t box, uint64_t count,
 PassCounts splatJobs(std::span<const SplatJob> jobs, std::span<const SelectedBox> boxes,
                      const SampleStream& stream, const SplatSetup& setup, bool dropBackfaces,
                      KeyBuffer& keys, int threads) {
-  const bool pixel = setup.splat == 1;
-  if (keys.wide())
-    return pixel ? runSplat<true, true>(jobs, boxes, stream, setup, dropBackfaces, keys, threads)
-                 : runSplat<true, false>(jobs, boxes, stream, setup, dropBackfaces, keys, threads);
-  return pixel ? runSplat<false, true>(jobs, boxes, stream, setup, dropBackfaces, keys, threads)
-               : runSplat<false, false>(jobs, boxes, stream, setup, dropBackfaces, keys, threads);
+  return withSplatter(keys, setup.splat, [&]<bool kWide, bool kPixel>() {
+    return runSplat<kWide, kPixel>(jobs, boxes, stream, setup, dropBackfaces, keys, threads);
+  });
 }
 
 // ---------------------------------------------------------------------------------------------

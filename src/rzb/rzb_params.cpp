@@ -6,6 +6,7 @@
 
 #include "src/core/error.hpp"
 #include "src/rzb/sample_cache.hpp"
+#include "src/splat/splatter.hpp"
 
 namespace lzb::rzb {
 
@@ -25,7 +26,7 @@ void RzbParams::validate() const {
           "must be > 1 (and at most 1000) or 'auto', got " + shortNumber(eps));
   require(std::isfinite(oversample) && oversample > 0.0 && oversample <= 1000.0, "--oversample",
           "must be in (0, 1000], got " + shortNumber(oversample));
-  require(splat >= 1 && splat <= 64, "--splat", "must be in [1, 64], got " + std::to_string(splat));
+  validateSplat(splat);
   require(!(reconstruct == Reconstruct::kPixel && splat > 1), "--reconstruct",
           "'pixel' draws single pixels; use --reconstruct splat with --splat " +
               std::to_string(splat));

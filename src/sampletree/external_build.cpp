@@ -494,6 +494,162 @@ std::vector<std::vector<StreamTriangle>> partitionsToBuckets(
   return stays;
 }
 
+// The input as the passes read it: a generator is copied on the first pass and read back (it
+// costs more to run than to read); the generator gets a thread of its own on the first pass, so
+// it overlaps the copy's writes.
+struct PassInput {
+  ScratchDir dir;
+  ReadAheadStream generated;
+  std::optional<CopiedStream> copied;
+  std::optional<ReadAheadStream> ahead;
+  std::optional<PassStream> in;
+
+  PassInput(const TriangleStream& source, const ExternalOptions& options, ExternalReport& report)
+      : dir(options.scratchDir), generated(source) {
+    if (source.regenerates()) copied.emplace(generated, dir.path / "input");
+    ahead.emplace(copied ? static_cast<const TriangleStream&>(*copied) : source);
+    in.emplace(*ahead, options.progress, report);
+  }
+};
+
+// One external build as it passes through its phases: bounds, counting (the census and the
+// plan), buckets (spilled, then built), top levels and store.
+class ExternalBuild {
+ public:
+  ExternalBuild(const TriangleStream& source, const TreeParams& params,
+                const ExternalOptions& options, int threads)
+      : params_(params), options_(options), threads_(threads), input_(source, options, report_) {}
+
+  ExternalReport run(const std::string& out) {
+    const Bounds bounds = readBounds();
+    if (report_.triangles == 0) return writeEmpty(out);
+    fitRootCube(frame_, bounds);
+    countCells();
+    buildBucketsFromSpill();
+    writeStore(out);
+    return report_;
+  }
+
+ private:
+  const TriangleStream& in() const { return *input_.in; }
+
+  Bounds readBounds() {
+    const Bounds bounds = boundsPass(in(), report_.triangles);
+    requireFloatResolves(bounds, in().where());
+    return bounds;
+  }
+
+  // Nothing to split: the in-memory build's empty tree.
+  ExternalReport writeEmpty(const std::string& out) {
+    SampleTree empty;
+    empty.params = params_;
+    empty.outline = outlineText(in().outline());
+    writeTree(empty, out);
+    report_.storeBytes = storeBytes(empty);
+    return report_;
+  }
+
+  // The counting passes (each spilling to the partitions) and the buckets they give.
+  void countCells() {
+    partitions_.emplace(input_.dir.path / "spill", options_.bufferTriangles);
+    census_.emplace(in(), frame_, options_.bucketTriangles, &*partitions_);
+    report_.countingPasses = report_.streamPasses - 1;
+    classify(*census_, CellKey{}, plan_);
+    for (const CellKey& k : plan_.buckets)
+      report_.largestBucket = std::max(report_.largestBucket, census_->find(k)->count);
+    require(report_.largestBucket <= options_.bucketTriangles, "--mem-mb",
+            "a cell of the deepest level holds " + std::to_string(report_.largestBucket) +
+                " triangles, more than a bucket may (" + std::to_string(options_.bucketTriangles) +
+                "): raise it");
+    report_.buckets = plan_.buckets.size();
+    report_.topCells = plan_.tops;
+  }
+
+  // The buckets' triangles spilled (by the last counting pass, or a writing pass when its IDs
+  // came out of order), each bucket built, and the triangles staying in top cells gathered.
+  void buildBucketsFromSpill() {
+    scratch_.emplace(input_.dir.path);
+    stayIndex_.assign(plan_.tops, {});
+    // a writing pass's spill, when the last counting pass's is not usable
+    std::optional<SpillFile> written;
+    std::vector<std::vector<uint32_t>> parts;
+    std::vector<std::vector<StreamTriangle>> stays;
+    if (partitions_->ordered()) {
+      stays = partitionsToBuckets(*census_, plan_, *partitions_, parts, options_.topTriangles);
+    } else {
+      partitions_->drop();
+      written.emplace(input_.dir.path / "spill-written", plan_.buckets.size(),
+                      options_.bufferTriangles);
+      stays = writingPass(in(), frame_, *census_, plan_, *written, options_.topTriangles);
+      for (uint32_t b = 0; b < plan_.buckets.size(); ++b) parts.push_back({b});
+    }
+    if (input_.copied) input_.copied->drop();  // the last pass
+    const BucketReader spill{written ? *written : partitions_->spill(), std::move(parts)};
+    report_.spillBytes = spill.spill.bytesWritten();
+    const Stopwatch clock;
+    buckets_ =
+        buildBuckets(plan_, spill, frame_, params_, threads_, options_, topInput_, *scratch_);
+    report_.bucketSeconds = clock.seconds();
+    partitions_->drop();  // the spill goes before the store is written, as the writing pass's did
+    for (size_t c = 0; c < stays.size(); ++c)
+      for (const StreamTriangle& t : stays[c]) {
+        stayIndex_[c].push_back(uint32_t(topInput_.size()));
+        topInput_.add(t);
+      }
+    report_.topTriangles = topInput_.size();
+    requireTopFits(topInput_.size(), options_.topTriangles);
+  }
+
+  // The top levels sampled and laid out, the buckets spliced in below them, the store written.
+  void writeStore(const std::string& out) {
+    const Stopwatch clock;
+    TopTree top;
+    top.oct.origin = frame_.origin;
+    top.oct.size = frame_.size;
+    addTopNode(*census_, plan_, CellKey{}, buckets_, stayIndex_, top);
+    const std::vector<double> topAreas = areasOf(topInput_);
+    drawSamples(top.oct, topAreas, params_.c, params_.seed, threads_);
+    TreeLayout layout(top.oct, topInput_, topAreas, top.hidden);
+    SampleTree head;
+    layout.emit(0, head);
+    StoreMeta meta{params_,           frame_.origin,     frame_.size,
+                   report_.triangles, head.nodes.size(), head.ids.size()};
+    for (const auto& [k, u] : layout.splices()) {
+      meta.nodes += top.hidden[u].nodes;
+      meta.triangles += top.hidden[u].triangles;
+    }
+    require(meta.triangles == report_.triangles, in().where(),
+            "internal: the external build stored " + std::to_string(meta.triangles) + " of " +
+                std::to_string(report_.triangles) + " triangles");
+    report_.nodes = meta.nodes;
+    const std::string outline = outlineText(in().outline());
+    meta.outlineBytes = outline.size();
+    const StoreAssembly assembly{head, layout.splices(), top, buckets_, *scratch_};
+    writeAtomically(out, [&](const std::filesystem::path& tmp) {
+      StoreWriter w(tmp, meta);
+      assembly.write(w);
+      w.append(outline.data(), outline.size());
+      w.finish();
+    });
+    report_.storeBytes = std::filesystem::file_size(out);
+    report_.storeSeconds = clock.seconds();
+  }
+
+  const TreeParams& params_;
+  const ExternalOptions& options_;
+  int threads_;
+  ExternalReport report_;
+  PassInput input_;  // after report_, which its passes count in
+  CellOctree frame_;
+  std::optional<PartitionSpill> partitions_;
+  std::optional<CellCensus> census_;
+  Plan plan_;
+  std::optional<ScratchArrays> scratch_;
+  std::vector<BucketResult> buckets_;
+  TriangleInput topInput_;
+  std::vector<std::vector<uint32_t>> stayIndex_;  // per top cell: its triangles in topInput_
+};
+
 }  // namespace
 
 ExternalOptions optionsForMemory(uint64_t memBytes, const TreeParams& params, int threads) {
@@ -513,106 +669,7 @@ ExternalReport buildTreeExternal(const TriangleStream& source, const TreeParams&
   validateParams(params);
   require(options.bucketTriangles > params.leafTriangles, "--mem-mb",
           "a bucket must hold more triangles than a leaf");
-  ExternalReport report;
-  const ScratchDir dir(options.scratchDir);
-  // A generator is copied on the first pass and read back: it costs more to run than to read.
-  // The generator gets a thread of its own on the first pass, so it overlaps the copy's writes.
-  const ReadAheadStream generated(source);
-  std::optional<CopiedStream> copied;
-  if (source.regenerates()) copied.emplace(generated, dir.path / "input");
-  const ReadAheadStream ahead(copied ? static_cast<const TriangleStream&>(*copied) : source);
-  const PassStream in(ahead, options.progress, report);
-  const Bounds bounds = boundsPass(in, report.triangles);
-  requireFloatResolves(bounds, in.where());
-  if (report.triangles == 0) {  // nothing to split: the in-memory build's empty tree
-    SampleTree empty;
-    empty.params = params;
-    empty.outline = outlineText(in.outline());
-    writeTree(empty, out);
-    report.storeBytes = storeBytes(empty);
-    return report;
-  }
-  CellOctree frame;
-  fitRootCube(frame, bounds);
-  PartitionSpill partitions(dir.path / "spill", options.bufferTriangles);
-  const CellCensus census(in, frame, options.bucketTriangles, &partitions);
-  report.countingPasses = report.streamPasses - 1;
-  Plan plan;
-  classify(census, CellKey{}, plan);
-  for (const CellKey& k : plan.buckets)
-    report.largestBucket = std::max(report.largestBucket, census.find(k)->count);
-  require(report.largestBucket <= options.bucketTriangles, "--mem-mb",
-          "a cell of the deepest level holds " + std::to_string(report.largestBucket) +
-              " triangles, more than a bucket may (" + std::to_string(options.bucketTriangles) +
-              "): raise it");
-  report.buckets = plan.buckets.size();
-  report.topCells = plan.tops;
-
-  ScratchArrays scratch(dir.path);
-  std::vector<BucketResult> buckets;
-  TriangleInput topInput;
-  std::vector<std::vector<uint32_t>> stayIndex(plan.tops);
-  {
-    std::optional<SpillFile> written;  // a writing pass's, when the last counting pass's is not usable
-    std::vector<std::vector<uint32_t>> parts;
-    std::vector<std::vector<StreamTriangle>> stays;
-    if (partitions.ordered()) {
-      stays = partitionsToBuckets(census, plan, partitions, parts, options.topTriangles);
-    } else {
-      partitions.drop();
-      written.emplace(dir.path / "spill-written", plan.buckets.size(), options.bufferTriangles);
-      stays = writingPass(in, frame, census, plan, *written, options.topTriangles);
-      for (uint32_t b = 0; b < plan.buckets.size(); ++b) parts.push_back({b});
-    }
-    if (copied) copied->drop();  // the last pass
-    const BucketReader spill{written ? *written : partitions.spill(), std::move(parts)};
-    report.spillBytes = spill.spill.bytesWritten();
-    const Stopwatch clock;
-    buckets = buildBuckets(plan, spill, frame, params, threads, options, topInput, scratch);
-    report.bucketSeconds = clock.seconds();
-    partitions.drop();  // the spill goes before the store is written, as the writing pass's did
-    for (size_t c = 0; c < stays.size(); ++c)
-      for (const StreamTriangle& t : stays[c]) {
-        stayIndex[c].push_back(uint32_t(topInput.size()));
-        topInput.add(t);
-      }
-    report.topTriangles = topInput.size();
-    requireTopFits(topInput.size(), options.topTriangles);
-  }
-
-  const Stopwatch clock;
-  TopTree top;
-  top.oct.origin = frame.origin;
-  top.oct.size = frame.size;
-  addTopNode(census, plan, CellKey{}, buckets, stayIndex, top);
-  const std::vector<double> topAreas = areasOf(topInput);
-  drawSamples(top.oct, topAreas, params.c, params.seed, threads);
-  TreeLayout layout(top.oct, topInput, topAreas, top.hidden);
-  SampleTree head;
-  layout.emit(0, head);
-
-  StoreMeta meta{params, frame.origin, frame.size, report.triangles, head.nodes.size(),
-                 head.ids.size()};
-  for (const auto& [k, u] : layout.splices()) {
-    meta.nodes += top.hidden[u].nodes;
-    meta.triangles += top.hidden[u].triangles;
-  }
-  require(meta.triangles == report.triangles, in.where(),
-          "internal: the external build stored " + std::to_string(meta.triangles) + " of " +
-              std::to_string(report.triangles) + " triangles");
-  report.nodes = meta.nodes;
-  const std::string outline = outlineText(in.outline());
-  meta.outlineBytes = outline.size();
-  const StoreAssembly assembly{head, layout.splices(), top, buckets, scratch};
-  writeAtomically(out, [&](const std::filesystem::path& tmp) {
-    StoreWriter w(tmp, meta);
-    assembly.write(w);
-    w.append(outline.data(), outline.size());
-    w.finish();
-  });
-  report.storeBytes = std::filesystem::file_size(out);
-  report.storeSeconds = clock.seconds();
-  return report;
+  return ExternalBuild(source, params, options, threads).run(out);
 }
 
 }  // namespace lzb::sampletree

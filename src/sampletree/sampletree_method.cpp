@@ -10,6 +10,7 @@
 #include "src/sampletree/sampletree_renderer.hpp"
 #include "src/sampletree/store_reader.hpp"
 #include "src/sampletree/tree_build.hpp"
+#include "src/splat/splatter.hpp"
 
 namespace lzb {
 
@@ -63,8 +64,7 @@ class SampleTreeMethod : public Method {
         ->capture_default_str();
   }
   void validate() override {
-    require(st_.splat >= 1 && st_.splat <= 64, "--splat",
-            "must be in 1..64, got " + std::to_string(st_.splat));
+    validateSplat(st_.splat);
     require(stopDraw_ == "splat" || stopDraw_ == "triangles", "--stop-draw",
             "expected splat or triangles, got '" + stopDraw_ + "'");
     st_.stopDraw = stopDraw_ == "splat" ? sampletree::StopDraw::kSplat : sampletree::StopDraw::kTriangles;

@@ -151,80 +151,98 @@ std::string SampleTreeRenderer::decomposition() const {
 void SampleTreeRenderer::render(const Camera& camera, int frame, const WorkShare& rankShare,
                                 Framebuffer& fb, FrameStats& stats) {
   if (server_) return serveFrame(stats);
+  Frame f;
+  f.camera = &camera;
   // With a node server the render ranks split the frame among themselves.
-  const WorkShare share = link_ ? renderShare(rankShare, *link_) : rankShare;
+  f.share = link_ ? renderShare(rankShare, *link_) : rankShare;
   Stopwatch clock;
-  const SampleTree& tree = this->tree();
+  f.tree = &tree();
   if (cache_) cache_->beginFrame();
-  const Traversal walk = traverse(tree, camera, st_.splat, st_.stopDraw);
-  std::vector<double> costs;
-  costs.reserve(walk.visits.size());
-  for (const Visit& v : walk.visits)
-    costs.push_back(v.splat ? 1.0 : double(tree.nodes[v.node].triangleCount));
-  std::vector<SoupRange> ranges;
-  std::vector<uint32_t> splats, drawn;
-  uint64_t triangles = 0;
-  for (uint32_t k : dealByCost(costs, share)) {
-    const Visit& v = walk.visits[k];
-    const TreeNode& n = tree.nodes[v.node];
-    if (v.splat) {
-      splats.push_back(v.node);
-    } else {
-      ranges.push_back({n.firstTriangle, n.firstTriangle + n.triangleCount});
-      drawn.push_back(v.node);
-      triangles += n.triangleCount;
-    }
-  }
-  if (cache_ && st_.cacheLevels > 0) {
-    cache_->touch(drawn);  // the prefetch, running from now on, must not evict them
-    cache_->prefetch(prefetchOfShare(tree, walk, splats, drawn, st_.cacheLevels));
-  }
+  traverseAndDeal(f);
+  prefetchBelow(f);
   stats.addStage("traverse", clock.lap());
-
-  keys_.reset(camera.width(), camera.height(), scene_.expandedTriangles() > 0xffffffffull,
-              options_.threads);
-  const SplatSetup setup = SplatSetup::from(camera, st_.splat);
-  shading_.begin();
-  shading_.addRepresentatives(tree, splats);
-  uint64_t splatted = 0;
-  if (keys_.wide())
-    splatted = st_.splat == 1 ? splatNodes<true, true>(tree, splats, camera, setup, keys_)
-                              : splatNodes<true, false>(tree, splats, camera, setup, keys_);
-  else
-    splatted = st_.splat == 1 ? splatNodes<false, true>(tree, splats, camera, setup, keys_)
-                              : splatNodes<false, false>(tree, splats, camera, setup, keys_);
-  keys_.resolve(fb, options_.threads);
+  splat(f, fb);
   stats.addStage("splat", clock.lap());
-
-  // The native z-buffer keeps the nearer (depth, ID) against the splats already in fb.
-  if (cache_) {
-    stats.addCount("draw_batches", double(drawPaged(*cache_, tree, drawn, camera, options_.threads,
-                                                    raster_, staging_, shading_, fb)));
-  } else {
-    raster_.drawSoup(camera, TriangleSoup{tree_.positions, tree_.ids, ranges}, options_.threads, fb);
-    shading_.keepShown(fb, {tree_.positions, tree_.ids, tree_.colours, ranges}, options_.threads);
-  }
+  drawTriangles(f, fb, stats);
   stats.addStage("triangles", clock.lap());
   shading_.shade(camera, scene_.light, fb, options_.threads);
   stats.addStage("shade", clock.lap());
-
   stats.setShared("approximated_pixels",
-                  double(approximatedPixels(
-                      tree, walk.stops, camera, st_.stopDraw == StopDraw::kSplat ? st_.splat : 0)));
+                  double(approximatedPixels(*f.tree, f.walk.stops, camera,
+                                            st_.stopDraw == StopDraw::kSplat ? st_.splat : 0)));
   stats.addStage("approximated", clock.lap());
-  stats.setShared("nodes_visited", double(walk.visited));
-  stats.setShared("nodes_stopped", double(walk.stops.size()));
-  stats.setShared("subtrees_culled", double(walk.culled));
-  stats.setShared("tree_bytes", double(treeBytes_));
-  stats.addCount("nodes_drawn", double(ranges.size()));
-  stats.addCount("triangles_drawn", double(triangles));
-  stats.addCount("splats_drawn", double(splats.size()));
-  stats.addCount("splats_in_image", double(splatted));
-  if (cache_) reportCache(stats);
+  report(f, stats);
   if (client_) {
     stats.addCount("remote_wait_seconds", client_->takeWaitSeconds());
     client_->frameDrawn(frame);
   }
+}
+
+// Every rank traverses alike; this rank keeps its run of the visits, dealt by cost.
+void SampleTreeRenderer::traverseAndDeal(Frame& f) const {
+  const SampleTree& tree = *f.tree;
+  f.walk = traverse(tree, *f.camera, st_.splat, st_.stopDraw);
+  std::vector<double> costs;
+  costs.reserve(f.walk.visits.size());
+  for (const Visit& v : f.walk.visits)
+    costs.push_back(v.splat ? 1.0 : double(tree.nodes[v.node].triangleCount));
+  for (uint32_t k : dealByCost(costs, f.share)) {
+    const Visit& v = f.walk.visits[k];
+    const TreeNode& n = tree.nodes[v.node];
+    if (v.splat) {
+      f.splats.push_back(v.node);
+    } else {
+      f.ranges.push_back({n.firstTriangle, n.firstTriangle + n.triangleCount});
+      f.drawn.push_back(v.node);
+      f.triangles += n.triangleCount;
+    }
+  }
+}
+
+// Out of core: the nodes below this rank's stops, loaded in the background for the next frames.
+void SampleTreeRenderer::prefetchBelow(const Frame& f) {
+  if (!cache_ || st_.cacheLevels <= 0) return;
+  cache_->touch(f.drawn);  // the prefetch, running from now on, must not evict them
+  cache_->prefetch(prefetchOfShare(*f.tree, f.walk, f.splats, f.drawn, st_.cacheLevels));
+}
+
+// The splats into the key buffer, resolved into fb.
+void SampleTreeRenderer::splat(Frame& f, Framebuffer& fb) {
+  const Camera& camera = *f.camera;
+  keys_.reset(camera.width(), camera.height(), scene_.expandedTriangles() > 0xffffffffull,
+              options_.threads);
+  const SplatSetup setup = SplatSetup::from(camera, st_.splat);
+  shading_.begin();
+  shading_.addRepresentatives(*f.tree, f.splats);
+  f.splatted = withSplatter(keys_, st_.splat, [&]<bool kWide, bool kPixel>() {
+    return splatNodes<kWide, kPixel>(*f.tree, f.splats, camera, setup, keys_);
+  });
+  keys_.resolve(fb, options_.threads);
+}
+
+// The native z-buffer keeps the nearer (depth, ID) against the splats already in fb.
+void SampleTreeRenderer::drawTriangles(const Frame& f, Framebuffer& fb, FrameStats& stats) {
+  if (cache_) {
+    stats.addCount("draw_batches",
+                   double(drawPaged(*cache_, *f.tree, f.drawn, *f.camera, options_.threads, raster_,
+                                    staging_, shading_, fb)));
+    return;
+  }
+  raster_.drawSoup(*f.camera, TriangleSoup{tree_.positions, tree_.ids, f.ranges}, options_.threads,
+                   fb);
+  shading_.keepShown(fb, {tree_.positions, tree_.ids, tree_.colours, f.ranges}, options_.threads);
+}
+
+void SampleTreeRenderer::report(const Frame& f, FrameStats& stats) {
+  stats.setShared("nodes_visited", double(f.walk.visited));
+  stats.setShared("nodes_stopped", double(f.walk.stops.size()));
+  stats.setShared("subtrees_culled", double(f.walk.culled));
+  stats.setShared("tree_bytes", double(treeBytes_));
+  stats.addCount("nodes_drawn", double(f.ranges.size()));
+  stats.addCount("triangles_drawn", double(f.triangles));
+  stats.addCount("splats_drawn", double(f.splats.size()));
+  stats.addCount("splats_in_image", double(f.splatted));
+  if (cache_) reportCache(stats);
 }
 
 // The server's frame: it draws nothing and waits until every render rank has drawn its share,

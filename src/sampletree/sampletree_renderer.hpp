@@ -11,6 +11,7 @@
 // from the tree's own triangles (tree_shading.hpp), so `scene` may be an outline without any.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "src/core/depth_key.hpp"
 #include "src/core/renderer.hpp"
@@ -55,7 +56,24 @@ class SampleTreeRenderer : public Renderer {
   // Out of core: the node cache (tests wait for its prefetch); null in core.
   NodeCache* cache() { return cache_.get(); }
 
+  // One frame as it passes through the stages.
+  struct Frame {
+    const Camera* camera = nullptr;
+    WorkShare share;  // among the render ranks
+    const SampleTree* tree = nullptr;
+    Traversal walk;
+    std::vector<uint32_t> splats, drawn;  // this rank's nodes: splatted, drawn as triangles
+    std::vector<SoupRange> ranges;        // the drawn nodes' triangles
+    uint64_t triangles = 0, splatted = 0;
+  };
+
  private:
+  // The stages, timed as traverse (the first two), splat, triangles; then shade and approximated.
+  void traverseAndDeal(Frame& f) const;
+  void prefetchBelow(const Frame& f);
+  void splat(Frame& f, Framebuffer& fb);
+  void drawTriangles(const Frame& f, Framebuffer& fb, FrameStats& stats);
+  void report(const Frame& f, FrameStats& stats);
   void openStore();
   void openNodeServer();
   uint64_t cacheBudget() const;

@@ -1,9 +1,15 @@
 #include "src/splat/splatter.hpp"
 
+#include "src/core/error.hpp"
 #include "src/core/philox_stream.hpp"
 #include "src/core/timer.hpp"
 
 namespace lzb {
+
+void validateSplat(int splat, const std::string& field) {
+  require(splat >= 1 && splat <= kMaxSplat, field,
+          "must be in [1, " + std::to_string(kMaxSplat) + "], got " + std::to_string(splat));
+}
 
 SplatSetup SplatSetup::from(const Camera& camera, int splat) {
   SplatSetup s;

@@ -13,12 +13,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "src/core/camera.hpp"
 #include "src/core/depth_key.hpp"
 
 namespace lzb {
+
+// The splat sizes a method may ask for (--splat): larger ones only blur the image.
+constexpr int kMaxSplat = 64;
+// Throws InputError naming `field` unless 1 <= splat <= kMaxSplat.
+void validateSplat(int splat, const std::string& field = "--splat");
 
 struct SplatSetup {
   int width = 0, height = 0;
@@ -137,6 +143,24 @@ class PointSplatter {
   std::vector<Target> targets_;
   uint64_t splatted_ = 0;
 };
+
+// The one place the key buffer's width becomes a template argument: fn.template
+// operator()<kWide>(), for a lambda []<bool kWide>() {...}.
+template <class Fn>
+auto withKeyWidth(const KeyBuffer& keys, Fn&& fn) {
+  if (keys.wide()) return fn.template operator()<true>();
+  return fn.template operator()<false>();
+}
+
+// The PointSplatter<kWide, kPixel> for `keys` and splat size d: fn.template
+// operator()<kWide, kPixel>(), for a lambda []<bool kWide, bool kPixel>() {...}.
+template <class Fn>
+auto withSplatter(const KeyBuffer& keys, int splat, Fn&& fn) {
+  return withKeyWidth(keys, [&]<bool kWide>() {
+    if (splat == 1) return fn.template operator()<kWide, true>();
+    return fn.template operator()<kWide, false>();
+  });
+}
 
 // The atomic-min scatter limit: random 64-bit atomic minima into a width x height buffer, per
 // second, on `threads` threads for about `seconds` (the bar every splatting pass is measured by).

@@ -1,7 +1,7 @@
 #pragma once
 // The frame's objects for --method sqrt5: every (node with triangles, world matrix, ID base) whose
-// bounds meet the frustum, in expanded-ID order (the same list on every rank), by a walk of the
-// scene graph that drops subtrees outside the frustum.
+// bounds meet the frustum, in expanded-ID order (the same list on every rank; the walk is
+// src/core/visible_placements.hpp's).
 #include <cstdint>
 #include <vector>
 

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
 #include "mpi/decomposition.hpp"
 #include "src/core/system.hpp"
@@ -29,7 +28,6 @@ Sqrt5Renderer::Sqrt5Renderer(const Scene& scene, const RenderOptions& options,
   options_.threads = std::max(options_.threads, 1);
   meshBounds_.resize(scene.nodes.size());
   halton_.resize(scene.nodes.size());
-  allTriangles_.resize(scene.nodes.size());
   for (size_t n = 0; n < scene.nodes.size(); ++n) {
     Bounds& b = meshBounds_[n];
     for (const glm::vec3& v : scene.nodes[n].mesh.positions) b.extend(glm::dvec3(v));
@@ -115,29 +113,19 @@ void Sqrt5Renderer::plan(Frame& f) {
 }
 
 void Sqrt5Renderer::deal(Frame& f) const {
-  f.jobs.clear();
-  std::vector<double> costs;
+  f.jobs = {};
   for (uint32_t i = 0; i < f.placements.size(); ++i) {
     if (f.side[i] > 0) {
+      // runs of rows of the initial grid, each row costing its roots
       const uint64_t rows = uint64_t(f.side[i]) + 1;
-      const uint64_t step = std::max<uint64_t>(1, kJobRoots / rows);
-      for (uint64_t r = 0; r < rows; r += step) {
-        f.jobs.push_back({i, r, std::min(rows, r + step)});
-        costs.push_back(double((f.jobs.back().end - r) * rows));
-      }
-      continue;
-    }
-    if (f.polygons[i] > 0) {
-      f.jobs.push_back({i, 0, 0});
-      costs.push_back(double(f.polygons[i]) * kTriangleCost);
-      continue;
-    }
-    for (uint64_t b = 0; b < f.halton[i]; b += kJobSamples) {
-      f.jobs.push_back({i, b, std::min(f.halton[i], b + kJobSamples)});
-      costs.push_back(double(f.jobs.back().end - b));
+      f.jobs.addRuns(i, rows, std::max<uint64_t>(1, kJobRoots / rows), rows);
+    } else if (f.polygons[i] > 0) {
+      f.jobs.addPolygons(i, f.polygons[i]);
+    } else {
+      f.jobs.addRuns(i, f.halton[i]);
     }
   }
-  f.mine = dealByCost(costs, f.share);
+  f.mine = dealByCost(f.jobs.costs, f.share);
 }
 
 // The cache entries of this rank's lines of cached placements (not sectors), made serially.
@@ -145,7 +133,7 @@ void Sqrt5Renderer::attachCache(Frame& f) {
   f.cached.assign(f.mine.size(), {});
   if (params_.cacheMb == 0) return;
   for (size_t k = 0; k < f.mine.size(); ++k) {
-    const Job& job = f.jobs[f.mine[k]];
+    const PlacementJob& job = f.jobs[f.mine[k]];
     const Placement& p = f.placements[job.placed];
     if (f.side[job.placed] == 0 || f.sectors[job.placed]) continue;
     for (uint64_t line = job.begin; line < job.end; ++line)
@@ -156,7 +144,7 @@ void Sqrt5Renderer::attachCache(Frame& f) {
 template <class Splatter>
 void Sqrt5Renderer::drawJob(const Frame& f, size_t k, Splatter& out, DrawCounts& counts,
                             Scratch& scratch) const {
-  const Job& job = f.jobs[f.mine[k]];
+  const PlacementJob& job = f.jobs[f.mine[k]];
   auto& stack = scratch.stack;
   auto& kids = scratch.kids;
   const Placement& p = f.placements[job.placed];
@@ -237,16 +225,10 @@ void Sqrt5Renderer::DrawCounts::merge(const DrawCounts& o) {
 std::pair<uint64_t, uint64_t> Sqrt5Renderer::drawPolygons(const Frame& f, Framebuffer& fb) {
   DrawLists lists;
   for (uint32_t k : f.mine) {
-    const Job& job = f.jobs[k];
+    const PlacementJob& job = f.jobs[k];
     if (f.polygons[job.placed] == 0) continue;
     const Placement& p = f.placements[job.placed];
-    std::vector<uint32_t>& all = allTriangles_[p.node];
-    if (all.empty()) {
-      all.resize(scene_.nodes[p.node].mesh.size());
-      for (uint32_t t = 0; t < all.size(); ++t) all[t] = t;
-    }
-    lists.lists.push_back({p.node, p.world, p.idBase, all});
-    lists.triangles += all.size();
+    wholeNodes_.add(lists, p.node, p.world, p.idBase, scene_.nodes[p.node].mesh.size());
   }
   if (!lists.lists.empty()) raster_.draw(scene_, *f.camera, lists, {}, options_.threads, fb);
   return {lists.lists.size(), lists.triangles};
@@ -256,15 +238,13 @@ Sqrt5Renderer::DrawCounts Sqrt5Renderer::draw(const Frame& f) {
   const Camera& cam = *f.camera;
   const bool wide = scene_.expandedTriangles() > 0xffffffffull;
   keys_.reset(cam.width(), cam.height(), wide, options_.threads);
-  const bool pixel = params_.splat() == 1;
-  if (wide) return pixel ? drawWith<true, true>(f) : drawWith<true, false>(f);
-  return pixel ? drawWith<false, true>(f) : drawWith<false, false>(f);
+  return withSplatter(keys_, params_.splat(),
+                      [&]<bool kWide, bool kPixel>() { return drawWith<kWide, kPixel>(f); });
 }
 
 void Sqrt5Renderer::render(const Camera& camera, int frame, const WorkShare& share,
                            Framebuffer& fb, FrameStats& stats) {
-  if (fb.width != camera.width() || fb.height != camera.height())
-    throw std::invalid_argument("sqrt5: framebuffer and camera sizes differ");
+  requireFrameSize(fb, camera, "sqrt5");
   Stopwatch clock;
   const Frame f = prepare(camera, share);
   stats.addStage("plan", clock.lap());

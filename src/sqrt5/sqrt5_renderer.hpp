@@ -6,13 +6,13 @@
 //      rows; a terrain seen along the ground is sampled in its sector instead (sector.hpp), with
 //      an initial grid of step 2 sqrt(A'min) pixels across the image (n = max(W, H) /
 //      (2 sqrt A'min)), cut into runs of constant-s lines, each culled against its horizon front
-//      to back (horizon.hpp, --horizon); per mesh placement its Halton prefix length n_s = A / (d~^2 A'min) from the nearest
-//      distance of its bounds (halton.hpp; each unique mesh's vector extended to the longest
-//      prefix this frame), cut into runs of kJobSamples; the runs are dealt to ranks in
-//      contiguous runs of equal estimated cost (mpi/decomposition.hpp: roots, or samples);
-//      a mesh placement whose prefix would be at least kPolygonFactor (4) x its triangle count
-//      (points cost as much there) is drawn as polygons instead: one unit of kTriangleCost per
-//      triangle (the paper's trade, sections 4 and 7: polygons are more efficient when they
+//      to back (horizon.hpp, --horizon); per mesh placement its Halton prefix length n_s = A /
+//      (d~^2 A'min) from the nearest distance of its bounds (halton.hpp; each unique mesh's vector
+//      extended to the longest prefix this frame), cut into runs of kJobPoints; the runs are dealt
+//      to ranks in contiguous runs of equal estimated cost (mpi/decomposition.hpp: roots, or
+//      samples); a mesh placement whose prefix would be at least kPolygonFactor (4) x its triangle
+//      count (points cost as much there) is drawn as polygons instead: one unit of kTriangleCost
+//      per triangle (the paper's trade, sections 4 and 7: polygons are more efficient when they
 //      cover many pixels; src/surfels switches per object alike);
 //   3. sample: this rank's runs, on OpenMP threads: sqrt(5) trees grown from the roots
 //      (refine.hpp) and Halton prefixes, every sample splatted through the splatting core with the
@@ -30,6 +30,7 @@
 
 #include "src/core/depth_key.hpp"
 #include "src/core/renderer.hpp"
+#include "src/splat/placement_jobs.hpp"
 #include "src/sqrt5/forest_cache.hpp"
 #include "src/sqrt5/halton.hpp"
 #include "src/sqrt5/horizon.hpp"
@@ -40,18 +41,14 @@
 
 namespace lzb::sqrt5 {
 
-// Halton samples per work item (the unit dealt to ranks and threads); roots per item at least.
-constexpr uint64_t kJobSamples = 16384;
+// Roots per work item at least (Halton samples per item: kJobPoints, placement_jobs.hpp).
 constexpr uint64_t kJobRoots = 1024;
 // Halton samples of one placement at most (a mesh nearer than its size asks for unbounded ones).
 constexpr uint64_t kMaxHaltonSamples = uint64_t(1) << 22;
-// The dealing cost of one polygon against one Halton sample (as src/surfels: set-up and a few
-// fragments).
-constexpr double kTriangleCost = 4.0;
 // A mesh placement is drawn as polygons when its Halton prefix n_s >= kPolygonFactor * m (m its
-// triangle count): by the cost above points are cheaper below, and a prefix covers a pixel only
-// with some probability where exact triangles cover it surely (coplanar and edge-on surfaces;
-// measured against k = 1: README).
+// triangle count): by kTriangleCost (placement_jobs.hpp) points are cheaper below, and a prefix
+// covers a pixel only with some probability where exact triangles cover it surely (coplanar and
+// edge-on surfaces; measured against k = 1: README).
 constexpr double kPolygonFactor = kTriangleCost;
 
 class Sqrt5Renderer : public Renderer {
@@ -64,13 +61,6 @@ class Sqrt5Renderer : public Renderer {
               FrameStats& stats) override;
   FrameStats setupStats() const override;
 
-  // A run of work: lines [begin, end) of a procedural placement's initial grid (rows; a sector's
-  // constant-s columns), Halton samples [begin, end) of a mesh placement, or (begin = end = 0)
-  // all triangles of a polygon placement.
-  struct Job {
-    uint32_t placed;
-    uint64_t begin, end;
-  };
   struct Frame {
     const Camera* camera = nullptr;
     WorkShare share;
@@ -79,7 +69,9 @@ class Sqrt5Renderer : public Renderer {
     std::vector<std::optional<Sector>> sectors;  // per placement: a terrain's sector
     std::vector<uint64_t> halton;    // per placement: Halton prefix length (mesh), else 0
     std::vector<uint64_t> polygons;  // per placement: triangles drawn exactly (mesh), else 0
-    std::vector<Job> jobs;
+    // runs of lines of a procedural placement's initial grid (rows; a sector's constant-s
+    // columns), of a mesh placement's Halton samples, or a polygon placement whole
+    PlacementJobs jobs;
     std::vector<uint32_t> mine;
     std::vector<std::vector<CachedLine*>> cached;  // per mine: its lines' cache entries, if cached
   };
@@ -118,7 +110,7 @@ class Sqrt5Renderer : public Renderer {
   Sqrt5Params params_;
   std::vector<Bounds> meshBounds_;                      // per node: its own surface
   std::vector<std::unique_ptr<HaltonSurface>> halton_;  // per mesh node, built on first use
-  std::vector<std::vector<uint32_t>> allTriangles_;     // per mesh node drawn as polygons: 0..m-1
+  WholeNodeLists wholeNodes_;                           // mesh nodes drawn as polygons
   ForestCache cache_;
   NativeRasterizer raster_;
   KeyBuffer keys_;

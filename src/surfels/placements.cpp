@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "src/core/visible_placements.hpp"
+
 namespace lzb::surfels {
 
 LevelChoice chooseLevel(double cellPx1, const SurfelParams& p) {
@@ -22,12 +24,11 @@ LevelChoice chooseLevel(double cellPx1, const SurfelParams& p) {
 
 namespace {
 
-struct Walk {
-  const Scene& scene;
+// Each visible placement measured and switched to a level or polygons, in the walk's order.
+struct Switch {
   const std::vector<Domain>& domains;
   const std::vector<Bounds>& meshBounds;
   const Camera& camera;
-  const Frustum frustum;
   const SurfelParams& params;
   const double tanX, tanY;
   std::vector<Placement> out;
@@ -61,25 +62,16 @@ struct Walk {
                 std::max(sx + std::min(slopeX, tanX) * sz, sy + std::min(slopeY, tanY) * sz);
   }
 
-  void visit(uint32_t node, const glm::dmat4& world, uint64_t idBase) {
-    if (frustum.classify(scene.nodeBounds[node].transformed(world)) == Cull::kOutside) return;
-    const Node& n = scene.nodes[node];
-    if (!n.mesh.empty()) {
-      if (frustum.classify(meshBounds[node].transformed(world)) != Cull::kOutside) {
-        Placement p;
-        p.node = node;
-        p.world = world;
-        p.idBase = idBase;
-        measure(p, domains[node], meshBounds[node]);
-        const LevelChoice c = chooseLevel(p.cellPx1, params);
-        p.level = c.level;
-        p.sprite = c.sprite;
-        out.push_back(p);
-      }
-    }
-    for (size_t i = 0; i < n.instances.size(); ++i)
-      visit(n.instances[i].node, world * n.instances[i].transform,
-            idBase + scene.childOffset(node, i));
+  void add(uint32_t node, const glm::dmat4& world, uint64_t idBase) {
+    Placement p;
+    p.node = node;
+    p.world = world;
+    p.idBase = idBase;
+    measure(p, domains[node], meshBounds[node]);
+    const LevelChoice c = chooseLevel(p.cellPx1, params);
+    p.level = c.level;
+    p.sprite = c.sprite;
+    out.push_back(p);
   }
 };
 
@@ -90,10 +82,11 @@ std::vector<Placement> visiblePlacements(const Scene& scene, const std::vector<D
                                          const Camera& camera, const SurfelParams& params) {
   const double halfW = 0.5 * camera.width(), halfH = 0.5 * camera.height();
   const double scale = camera.pixelsPerUnitAt(1.0);
-  Walk w{scene,  domains,       meshBounds,    camera, camera.frustum(),
-         params, halfW / scale, halfH / scale, {}};
-  w.visit(scene.root, glm::dmat4(1.0), 0);
-  return std::move(w.out);
+  Switch s{domains, meshBounds, camera, params, halfW / scale, halfH / scale, {}};
+  forEachVisiblePlacement(scene, meshBounds, camera.frustum(),
+                          [&](uint32_t node, const glm::dmat4& world, uint64_t idBase,
+                              const Bounds&) { s.add(node, world, idBase); });
+  return std::move(s.out);
 }
 
 }  // namespace lzb::surfels

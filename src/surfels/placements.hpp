@@ -4,7 +4,7 @@
 // An object is a scene node with triangles; a placement is one of its instances in the fully
 // instanced scene (node, world matrix, expanded ID of its triangle 0). The traversal walks the
 // scene graph in expanded-ID order, dropping subtrees outside the frustum, so every rank lists the
-// same placements in the same order.
+// same placements in the same order (src/core/visible_placements.hpp).
 //
 // The switch, per placement: a grid level is hole-free when its cell, projected at the object's
 // nearest view depth, spans at most `cellFraction` x the sprite's covered side (a surfel sits

@@ -44,11 +44,9 @@ PlacedLevel PlacedLevel::make(const SurfelLevel& level, const glm::dmat4& world,
 
 std::vector<SurfelJob> makeJobs(std::span<const PlacedLevel> placed,
                                 std::span<const uint32_t> which, uint64_t chunk) {
-  std::vector<SurfelJob> jobs;
-  for (uint32_t i : which)
-    for (uint64_t b = 0; b < placed[i].count; b += chunk)
-      jobs.push_back({i, b, std::min(placed[i].count, b + chunk)});
-  return jobs;
+  PlacementJobs jobs;
+  for (uint32_t i : which) jobs.addRuns(i, placed[i].count, chunk);
+  return std::move(jobs.list);
 }
 
 namespace {
@@ -207,9 +205,9 @@ DrawCounts drawSurfels(std::span<const PlacedLevel> placed, std::span<const Surf
                        const Camera& camera, bool disc, bool cullBackfaces,
                        const OctahedralNormals& normals, KeyBuffer& keys, int threads) {
   threads = std::max(threads, 1);
-  return keys.wide()
-             ? drawAll<true>(placed, jobs, camera, disc, cullBackfaces, normals, keys, threads)
-             : drawAll<false>(placed, jobs, camera, disc, cullBackfaces, normals, keys, threads);
+  return withKeyWidth(keys, [&]<bool kWide>() {
+    return drawAll<kWide>(placed, jobs, camera, disc, cullBackfaces, normals, keys, threads);
+  });
 }
 
 }  // namespace lzb::surfels

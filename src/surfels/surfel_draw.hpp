@@ -16,6 +16,7 @@
 
 #include "src/core/camera.hpp"
 #include "src/core/depth_key.hpp"
+#include "src/splat/placement_jobs.hpp"
 #include "src/surfels/normal_quantizer.hpp"
 #include "src/surfels/surfelize.hpp"
 
@@ -36,10 +37,7 @@ struct PlacedLevel {
 };
 
 // A run of entries [begin, end) of placed[placed].
-struct SurfelJob {
-  uint32_t placed;
-  uint64_t begin, end;
-};
+using SurfelJob = PlacementJob;
 
 struct DrawCounts {
   uint64_t drawn = 0;       // entries read

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "src/core/error.hpp"
+#include "src/splat/splatter.hpp"
 
 namespace lzb::surfels {
 
@@ -41,7 +42,7 @@ std::vector<int> parseGrids(const std::string& text, Quality quality) {
 }  // namespace
 
 void SurfelParams::validate() const {
-  require(sprite >= 1 && sprite <= 64, "--splat", "must be in [1, 64]");
+  validateSplat(sprite);
   require(cellFraction > 0.0 && cellFraction <= 4.0, "--surfel-cell", "must be in (0, 4]");
   require(budgetMs >= 0.0 && budgetMs <= 1e6, "--budget-ms", "must be in [0, 1e6] milliseconds");
   require(budgetRate >= 0.0 && std::isfinite(budgetRate), "--budget-rate",

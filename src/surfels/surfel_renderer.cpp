@@ -4,7 +4,6 @@
 #include <cmath>
 #include <map>
 #include <set>
-#include <stdexcept>
 
 #include "mpi/decomposition.hpp"
 #include "src/core/error.hpp"
@@ -31,7 +30,6 @@ SurfelRenderer::SurfelRenderer(const Scene& scene, const RenderOptions& options,
   domains_.resize(scene.nodes.size());
   meshBounds_.resize(scene.nodes.size());
   levels_.resize(scene.nodes.size());
-  allTriangles_.resize(scene.nodes.size());
   for (size_t n = 0; n < scene.nodes.size(); ++n) {
     if (scene.nodes[n].mesh.empty()) continue;
     domains_[n] = Domain::around(scene.nodes[n].mesh);
@@ -108,20 +106,14 @@ void SurfelRenderer::applyBudget(Frame& f) const {
 }
 
 void SurfelRenderer::deal(Frame& f) const {
-  f.items.clear();
-  std::vector<double> costs;
+  f.items = {};
   for (uint32_t i = 0; i < f.placements.size(); ++i) {
-    if (f.placements[i].level == kPolygons) {
-      f.items.push_back({i, 0, 0});
-      costs.push_back(double(f.work[i]) * kTriangleCost);
-      continue;
-    }
-    for (uint64_t b = 0; b < f.work[i]; b += kJobSurfels) {
-      f.items.push_back({i, b, std::min(f.work[i], b + kJobSurfels)});
-      costs.push_back(double(f.items.back().end - b));
-    }
+    if (f.placements[i].level == kPolygons)
+      f.items.addPolygons(i, f.work[i]);
+    else
+      f.items.addRuns(i, f.work[i]);
   }
-  f.mine = dealByCost(costs, f.share);
+  f.mine = dealByCost(f.items.costs, f.share);
 }
 
 void SurfelRenderer::drawPolygons(const Frame& f, Framebuffer& fb, FrameStats& stats) {
@@ -130,13 +122,7 @@ void SurfelRenderer::drawPolygons(const Frame& f, Framebuffer& fb, FrameStats& s
   for (uint32_t k : f.mine) {
     const Placement& p = f.placements[f.items[k].placed];
     if (p.level != kPolygons) continue;
-    std::vector<uint32_t>& all = allTriangles_[p.node];
-    if (all.empty()) {
-      all.resize(scene_.nodes[p.node].mesh.size());
-      for (uint32_t t = 0; t < all.size(); ++t) all[t] = t;
-    }
-    lists.lists.push_back({p.node, p.world, p.idBase, all});
-    lists.triangles += all.size();
+    wholeNodes_.add(lists, p.node, p.world, p.idBase, scene_.nodes[p.node].mesh.size());
     ++placements;
   }
   if (!lists.lists.empty()) raster_.draw(scene_, *f.camera, lists, {}, options_.threads, fb);
@@ -150,7 +136,7 @@ void SurfelRenderer::drawSurfelPass(const Frame& f, FrameStats& stats) {
   std::vector<SurfelJob> jobs;
   uint32_t last = ~0u;  // items of one placement are consecutive
   for (uint32_t k : f.mine) {
-    const SurfelJob& item = f.items[k];
+    const PlacementJob& item = f.items[k];
     const Placement& p = f.placements[item.placed];
     if (p.level == kPolygons) continue;
     if (item.placed != last) {
@@ -179,8 +165,7 @@ void SurfelRenderer::combine(Framebuffer& fb) {
 
 void SurfelRenderer::render(const Camera& camera, int frame, const WorkShare& share,
                             Framebuffer& fb, FrameStats& stats) {
-  if (fb.width != camera.width() || fb.height != camera.height())
-    throw std::invalid_argument("surfels: framebuffer and camera sizes differ");
+  requireFrameSize(fb, camera, "surfels");
   // A measured rate is this rank's own: ranks that disagree on the budget would deal different
   // surfel runs, drawing some twice and leaving others out of the prefix.
   require(
@@ -314,7 +299,7 @@ void SurfelRenderer::measureRate() {
   const PlacedLevel placed = PlacedLevel::make(level, glm::dmat4(1.0), 0, camera, params_.sprite,
                                                level.collector.size(), params_.dropBackfaces);
   const uint32_t one = 0;
-  const std::vector<SurfelJob> jobs = makeJobs({&placed, 1}, {&one, 1}, kJobSurfels);
+  const std::vector<SurfelJob> jobs = makeJobs({&placed, 1}, {&one, 1}, kJobPoints);
   KeyBuffer keys;
   double seconds = 0.0;
   constexpr int kRounds = 3;

@@ -7,9 +7,9 @@
 //   3. budget (--budget-ms): the surfel count the budget buys at the rate, as a fraction drawn of
 //      every placement's collector, in its shuffled order;
 //   4. deal: the work items in placement order - a polygon placement whole, a surfel placement in
-//      runs of kJobSurfels of its collector - dealt to ranks in runs of equal estimated cost
-//      (mpi/decomposition.hpp: surfels drawn, or kTriangleCost per polygon), so one large object
-//      is split too;
+//      runs of kJobPoints of its collector (src/splat/placement_jobs.hpp) - dealt to ranks in
+//      runs of equal estimated cost (mpi/decomposition.hpp: surfels drawn, or kTriangleCost per
+//      polygon), so one large object is split too;
 //   5. polygons: this rank's polygon placements by the native z-buffer into the frame;
 //   6. surfels: this rank's surfel placements splatted into a key buffer (surfel_draw.hpp);
 //   7. combine: keys resolved and composited with the polygons by the (depth, ID) key.
@@ -23,6 +23,7 @@
 
 #include "src/core/depth_key.hpp"
 #include "src/core/renderer.hpp"
+#include "src/splat/placement_jobs.hpp"
 #include "src/surfels/normal_quantizer.hpp"
 #include "src/surfels/placements.hpp"
 #include "src/surfels/surfel_draw.hpp"
@@ -31,12 +32,6 @@
 #include "src/zbuffer/native_raster.hpp"
 
 namespace lzb::surfels {
-
-// The dealing cost of one polygon against one surfel: an estimate of the native z-buffer's cost
-// of a small triangle (set-up, edge functions) over one splat; it moves only the load balance.
-constexpr double kTriangleCost = 4.0;
-// Surfels per work item (the unit dealt to ranks and threads).
-constexpr uint64_t kJobSurfels = 16384;
 
 class SurfelRenderer : public Renderer {
  public:
@@ -58,7 +53,7 @@ class SurfelRenderer : public Renderer {
     std::vector<uint64_t> work;    // per placement: surfels to draw, or triangles
     uint64_t selected = 0;         // surfels of every surfel placement (before the budget)
     uint64_t budget = 0;           // surfels the budget buys (0: no budget)
-    std::vector<SurfelJob> items;  // placement order; polygons: one item, begin == end == 0
+    PlacementJobs items;           // placement order; polygons: one item, begin == end == 0
     std::vector<uint32_t> mine;    // this rank's items
   };
   void cull(Frame& f) const;
@@ -90,7 +85,7 @@ class SurfelRenderer : public Renderer {
   std::vector<Domain> domains_;                                    // per node
   std::vector<Bounds> meshBounds_;                                 // per node: its own triangles
   std::vector<std::vector<std::unique_ptr<SurfelLevel>>> levels_;  // [node][level]
-  std::vector<std::vector<uint32_t>> allTriangles_;                // per node, for draw lists
+  WholeNodeLists wholeNodes_;                                      // placements as polygons
   NativeRasterizer raster_;
   KeyBuffer keys_;
   Framebuffer points_;

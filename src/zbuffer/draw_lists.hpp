@@ -2,6 +2,7 @@
 // What a z-buffer pass draws: lists of triangles per (scene node, placement), each expanded
 // triangle once, in ascending expanded-ID order (NativeRasterizer::draw,
 // TriangleRasterizer::drawList).
+#include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <vector>
@@ -21,6 +22,18 @@ struct DrawLists {
   uint64_t leaves = 0;          // distinct (placement, octree leaf) pairs they came from
   // Whether expanded triangle `id` is listed.
   bool contains(uint64_t id) const;
+};
+
+// Whole placed nodes as draw lists, every triangle 0..m-1 (the placements sqrt5 and surfels draw
+// as polygons); each node's list is made on first use and kept.
+class WholeNodeLists {
+ public:
+  // Appends `node`, of `triangles` triangles, placed at (world, idBase).
+  void add(DrawLists& lists, uint32_t node, const glm::dmat4& world, uint64_t idBase,
+           size_t triangles);
+
+ private:
+  std::vector<std::vector<uint32_t>> all_;  // per node, grown on demand
 };
 
 }  // namespace lzb

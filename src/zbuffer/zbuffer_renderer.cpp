@@ -1,10 +1,8 @@
 #include "src/zbuffer/zbuffer_renderer.hpp"
 
-#include <stdexcept>
-
+#include "mpi/decomposition.hpp"
 #include "src/core/shading.hpp"
 #include "src/core/timer.hpp"
-#include "mpi/decomposition.hpp"
 
 namespace lzb {
 
@@ -20,8 +18,7 @@ std::string ZBufferRenderer::decomposition() const {
 
 void ZBufferRenderer::render(const Camera& camera, int /*frame*/, const WorkShare& share,
                              Framebuffer& fb, FrameStats& stats) {
-  if (fb.width != camera.width() || fb.height != camera.height())
-    throw std::invalid_argument("zbuffer: framebuffer and camera sizes differ");
+  requireFrameSize(fb, camera, "zbuffer");
   Stopwatch clock;
   rasterizer_.begin(camera);
   const IdRange range = shareRange(scene_.expandedTriangles(), share);
