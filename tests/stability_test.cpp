@@ -82,7 +82,7 @@ struct View {
   }
 };
 
-struct Scene {
+struct SceneSpec {
   std::string generator = "sphereflake?depth=2";  // "" for none
   std::vector<Tri> extra;                         // more triangles, in the generator's frame
   // Meshes of their own, each a node (so each is stored, and Embree recentres it, on its own).
@@ -96,7 +96,7 @@ struct Scene {
 
 // The scene file: root "world" places the generator and the extra mesh by one transform, and the
 // camera is that transform of the view (its clip planes scaled).
-std::string tomlOf(const Scene& s, const fs::path& dir) {
+std::string tomlOf(const SceneSpec& s, const fs::path& dir) {
   const double k = s.scale;
   const glm::dvec3& o = s.offset;
   const std::string matrix = "[[" + num(k) + ", 0, 0, " + num(o.x) + "], [0, " + num(k) + ", 0, " +
@@ -139,7 +139,7 @@ struct Outcome {
 };
 
 // Renders `scene` with `method` and `args` against the raycast reference into a fresh folder.
-Outcome render(const std::string& name, const Scene& scene, const std::string& method,
+Outcome render(const std::string& name, const SceneSpec& scene, const std::string& method,
                const std::string& args, int ranks = 1) {
   const fs::path dir = freshDir("stability_" + name + "_" + method);
   std::ofstream(dir / "scene.toml") << tomlOf(scene, dir);
@@ -204,7 +204,7 @@ enum class Expect { kRenders, kRefused, kUnchanged, kCoarse };
 
 struct Case {
   std::string name;
-  std::function<Scene()> scene;
+  std::function<SceneSpec()> scene;
   std::string args;                       // extra lzb render arguments
   std::string twin = "well_conditioned";  // its well-conditioned counterpart (twins: themselves)
   // Per method (default kRenders): kRefused names `mention`; kUnchanged compares with the twin.
@@ -215,7 +215,7 @@ struct Case {
   bool deterministic = false;  // also: 1 vs 2 threads and 1 vs 2 and 3 ranks give the same IDs
   int instanceDepth = -1;      // when set: the report's scene.instance_depth
 };
-Case makeCase(std::string name, std::function<Scene()> scene, std::string args = "") {
+Case makeCase(std::string name, std::function<SceneSpec()> scene, std::string args = "") {
   Case c;
   c.name = std::move(name);
   c.scene = std::move(scene);
@@ -311,8 +311,8 @@ TEST_P(Stability, KeepsItsAssertedBehaviour) {
 
 constexpr double kPi = 3.14159265358979323846;
 
-Scene base() {
-  return Scene{};
+SceneSpec base() {
+  return SceneSpec{};
 }
 
 // Cards parallel to the image plane at view depths 1e-3, 1e-2, ..., 1e6, each filling one of ten
@@ -434,8 +434,8 @@ std::vector<Tri> enclosingSphere() {
 // A close view straight down at the centre of a chessboard of `n` squares (board side 100): the
 // 10^14-triangle board (n = 2^23) and its 8192-triangle twin (n = 64) seen so that both show the
 // same squares (the twin's camera is 2^17 times farther, its squares 2^17 times larger).
-Scene chessboardView(int64_t n, double scale) {
-  Scene s;
+SceneSpec chessboardView(int64_t n, double scale) {
+  SceneSpec s;
   s.generator = "chessboard?n=" + std::to_string(n);
   s.view.position = glm::dvec3(1e-4, 5e-4, 0.0) * scale;
   s.view.lookAt = glm::dvec3(1e-4, 0.0, 0.0) * scale;
@@ -456,17 +456,17 @@ const std::map<std::string, Case>& cases() {
     std::vector<Case> list;
     list.push_back(makeCase("well_conditioned", base));
     list.push_back(makeCase("scaled_1e-6", [] {
-      Scene s = base();
+      SceneSpec s = base();
       s.scale = 1e-6;
       return s;
     }));
     list.push_back(makeCase("scaled_1e7", [] {
-      Scene s = base();
+      SceneSpec s = base();
       s.scale = 1e7;
       return s;
     }));
     Case offset = makeCase("offset_1e8", [] {
-      Scene s = base();
+      SceneSpec s = base();
       s.offset = glm::dvec3(1e8);
       return s;
     });
@@ -477,25 +477,25 @@ const std::map<std::string, Case>& cases() {
     offset.mention = "too far from the origin";
     list.push_back(offset);
     list.push_back(makeCase("near_1e-6_far_1e6", [] {
-      Scene s = base();
+      SceneSpec s = base();
       s.view.nearPlane = 1e-6;
       s.view.farPlane = 1e6;
       return s;
     }));
     list.push_back(makeCase("depth_range_1e9", [] {
-      Scene s = base();
+      SceneSpec s = base();
       s.parts = depthCards(s.view, s.width, s.height);
       s.view.nearPlane = 5e-4;
       s.view.farPlane = 2e6;
       return s;
     }));
     list.push_back(makeCase("slivers_and_needles", [] {
-      Scene s = base();
+      SceneSpec s = base();
       s.extra = sliversAndNeedles(s.view);
       return s;
     }));
     Case edge = makeCase("edge_on", [] {
-      Scene s = base();
+      SceneSpec s = base();
       s.view = edgeOnView();
       s.extra = edgeOnQuads();
       s.width = 161, s.height = 121;
@@ -504,13 +504,13 @@ const std::map<std::string, Case>& cases() {
     edge.twin = "edge_on_twin";
     list.push_back(edge);
     list.push_back(makeCase("edge_on_twin", [] {
-      Scene s = base();
+      SceneSpec s = base();
       s.view = edgeOnView();
       s.width = 161, s.height = 121;
       return s;
     }));
     Case axes = makeCase("octree_planes_and_corners", [] {
-      Scene s;
+      SceneSpec s;
       s.generator = "";
       s.extra = axisCubes();
       s.view = axisView(glm::dvec3(0.0));
@@ -520,14 +520,14 @@ const std::map<std::string, Case>& cases() {
     axes.twin = "octree_off_axis";
     list.push_back(axes);
     list.push_back(makeCase("octree_off_axis", [] {
-      Scene s;
+      SceneSpec s;
       s.generator = "";
       s.extra = axisCubes();
       s.view = axisView({0.37, 0.29, 0.0});
       return s;
     }));
     Case coplanar = makeCase("coplanar_1e-5", [] {
-      Scene s = base();
+      SceneSpec s = base();
       s.extra = coplanarQuads(true);
       return s;
     });
@@ -563,14 +563,14 @@ const std::map<std::string, Case>& cases() {
     // The deepest nesting there may be: world, 59 identity levels and the flake's 5 (its node,
     // 3 levels, the sphere mesh at the bottom): 64 instances on the longest path.
     Case nested = makeCase("nesting_64_levels", [] {
-      Scene s = base();
+      SceneSpec s = base();
       s.chain = 59;
       return s;
     });
     nested.instanceDepth = kMaxInstanceDepth;
     list.push_back(nested);
     list.push_back(makeCase("camera_inside_closed_mesh", [] {
-      Scene s = base();
+      SceneSpec s = base();
       s.extra = enclosingSphere();
       s.view.farPlane = 30.0;
       return s;

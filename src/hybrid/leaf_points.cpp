@@ -112,7 +112,7 @@ void splatLeaf(const localz::LzbAccel& accel, const LeafAreas& areas, const loca
 
 // One level of a subtree unit's descent: a placed node covering [lo, hi) of the unit's area
 // coordinate, lo + scale x its own area coordinate.
-struct Level {
+struct SubtreeLevel {
   uint32_t node;
   Affine toCamera;
   glm::dvec3 eyeLocal;
@@ -152,7 +152,7 @@ void splatSubtree(const localz::LzbAccel& accel, const LeafAreas& areas,
                   const localz::CullPath& path, const PathView& view, const SampledLeaf& sl,
                   uint64_t first, uint64_t count, const PointParams& params,
                   const SampleStream& stream, std::vector<uint32_t> (&w)[4],
-                  std::vector<Level>& stack, Splatter& out, uint64_t& back) {
+                  std::vector<SubtreeLevel>& stack, Splatter& out, uint64_t& back) {
   const Scene& scene = accel.scene();
   const double total = areas.subtreeArea(path.node), inv = 1.0 / double(sl.samples);
   stack.assign(1, {path.node, view.toCamera, view.eyeLocal, path.idBase, 0.0, 1.0,
@@ -167,7 +167,7 @@ void splatSubtree(const localz::LzbAccel& accel, const LeafAreas& areas,
       while (keep < stack.size() && target < stack[keep].hi) ++keep;
       stack.resize(keep);
       for (;;) {  // down to the node whose own triangles hold the target
-        Level& l = stack.back();
+        SubtreeLevel& l = stack.back();
         const std::span<const double> P = areas.flatPrefix(l.node);
         if (P.size() == 1 || l.lo + P[0] * l.scale > target) break;
         // Entry k covers [P[k], P[k + 1]): the first with its upper boundary above the target,
@@ -176,7 +176,7 @@ void splatSubtree(const localz::LzbAccel& accel, const LeafAreas& areas,
         while (k > 0 && P[k + 1] == P[k]) --k;
         l.entry = k;
         const LeafAreas::FlatInstance& e = areas.flat(l.node)[k];
-        const Level child{e.node,
+        const SubtreeLevel child{e.node,
                           l.toCamera * e.transform,
                           e.inverse.point(l.eyeLocal),
                           l.idBase + e.idOffset,
@@ -187,7 +187,7 @@ void splatSubtree(const localz::LzbAccel& accel, const LeafAreas& areas,
                           0};
         stack.push_back(child);
       }
-      Level& l = stack.back();
+      SubtreeLevel& l = stack.back();
       const std::span<const double> prefix = areas.nodePrefix(l.node);
       const double local = (target - l.lo) / l.scale;
       l.tri = searchForward(prefix.data(), prefix.size(),
@@ -213,7 +213,7 @@ PointCounts runJobs(const localz::LzbAccel& accel, const LeafAreas& areas,
     PointSplatter<kWide, kPixel> out(setup, keys);
     std::vector<uint32_t> w[4];
     for (auto& v : w) v.resize(kBatch);
-    std::vector<Level> stack;
+    std::vector<SubtreeLevel> stack;
 #pragma omp for schedule(dynamic, 1)
     for (long k = 0; k < n; ++k) {
       const Job& job = jobs[size_t(k)];

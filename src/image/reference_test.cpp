@@ -13,12 +13,12 @@ namespace {
 // A 2 x 1 centre image and its 8 x 4 sub-sample image: sub-sample (a, b) of pixel i holds ID
 // 100 i + a + 4b and colour bytes (16 i + a + 4b, 3 b, 255); sub-sample (3, 3) of pixel 1 is
 // empty (kBackground counts as black in the box filter).
-struct Pair {
+struct CentresAndSubsamples {
   Framebuffer centres{2, 1}, fine{8, 4};
 };
 
-Pair handBuilt() {
-  Pair p;
+CentresAndSubsamples handBuilt() {
+  CentresAndSubsamples p;
   p.centres.id = {7, kNoId};
   for (int i = 0; i < 2; ++i)
     for (int b = 0; b < 4; ++b)
@@ -34,7 +34,7 @@ Pair handBuilt() {
 }
 
 TEST(Reference, SubsamplesAreRowMajorPerPixel) {
-  const Pair p = handBuilt();
+  const CentresAndSubsamples p = handBuilt();
   const ReferenceFrame ref = reduceReference(p.centres, p.fine);
   ASSERT_EQ(ref.width, 2);
   ASSERT_EQ(ref.height, 1);
@@ -47,7 +47,7 @@ TEST(Reference, SubsamplesAreRowMajorPerPixel) {
 }
 
 TEST(Reference, BoxColourIsTheExactMeanOfTheSixteenSubsamples) {
-  const Pair p = handBuilt();
+  const CentresAndSubsamples p = handBuilt();
   const ReferenceFrame ref = reduceReference(p.centres, p.fine);
   // Pixel 0: R = mean of 0..15 = 7.5; G = 3 * mean(b) = 4.5; B = 255.
   EXPECT_EQ(ref.boxColor[0][0], 7.5f);

@@ -26,11 +26,11 @@ constexpr size_t kChildTask = size_t(1) << 12;
 constexpr uint64_t kProgressEntries = uint64_t(1) << 17;
 constexpr int kMaxDepthLimit = 30;
 
-struct BuildNode {
+struct PendingNode {
   Bounds box;
   int depth = 0;
   std::vector<uint32_t> entries;          // leaves
-  std::unique_ptr<BuildNode[]> children;  // 8, or null for a leaf
+  std::unique_ptr<PendingNode[]> children;  // 8, or null for a leaf
 };
 
 std::array<Bounds, 8> childBoxes(const Bounds& b) {
@@ -57,7 +57,7 @@ class OctreeBuilder {
       : mesh_(mesh), instances_(instances), params_(params), progress_(progress) {}
 
   // Splits `node` holding `entries` (all overlap node.box); `budget` is its share of progress.
-  void build(BuildNode& node, std::vector<uint32_t> entries, double budget) {
+  void build(PendingNode& node, std::vector<uint32_t> entries, double budget) {
     const size_t n = entries.size();
     if (n <= params_.maxLeafEntries || node.depth >= params_.maxDepth)
       return makeLeaf(node, std::move(entries), budget);
@@ -96,7 +96,7 @@ class OctreeBuilder {
       for (unsigned m = masks[i]; m; m &= m - 1) lists[__builtin_ctz(m)].push_back(entries[i]);
     std::vector<uint32_t>().swap(entries);
     std::vector<uint8_t>().swap(masks);
-    node.children = std::make_unique<BuildNode[]>(8);
+    node.children = std::make_unique<PendingNode[]>(8);
     for (int c = 0; c < 8; ++c) {
       node.children[c].box = kids[c];
       node.children[c].depth = node.depth + 1;
@@ -128,7 +128,7 @@ class OctreeBuilder {
     __builtin_prefetch(p + sizeof(glm::vec3[3]) - 1);
   }
 
-  void makeLeaf(BuildNode& node, std::vector<uint32_t> entries, double budget) {
+  void makeLeaf(PendingNode& node, std::vector<uint32_t> entries, double budget) {
     node.entries = std::move(entries);
     progress_.add(uint64_t(budget));
   }
@@ -177,14 +177,14 @@ class OctreeBuilder {
 
 namespace {
 
-uint64_t countNodes(const BuildNode& b) {
+uint64_t countNodes(const PendingNode& b) {
   uint64_t n = 1;
   if (b.children)
     for (int c = 0; c < 8; ++c) n += countNodes(b.children[c]);
   return n;
 }
 
-uint64_t countEntries(const BuildNode& b) {
+uint64_t countEntries(const PendingNode& b) {
   uint64_t n = b.entries.size();
   if (b.children)
     for (int c = 0; c < 8; ++c) n += countEntries(b.children[c]);
@@ -225,7 +225,7 @@ Octree::Octree(const Mesh& mesh, std::span<const Bounds> instanceBoxes, const Oc
     rootEntries.push_back(i | kInstanceBit);
   }
   // A cube keeps cells well shaped; extended by the content so rounding never leaves it out.
-  BuildNode root;
+  PendingNode root;
   if (!content.empty()) {
     const glm::dvec3 e = content.extent();
     const double half = 0.5 * std::max(e.x, std::max(e.y, e.z));
@@ -248,7 +248,7 @@ Octree::Octree(const Mesh& mesh, std::span<const Bounds> instanceBoxes, const Oc
   boxes_.reserve(nodeCount);
   depths_.reserve(nodeCount);
   entries_.reserve(countEntries(root));
-  const auto place = [&](auto& self, BuildNode& b, uint32_t index) -> void {
+  const auto place = [&](auto& self, PendingNode& b, uint32_t index) -> void {
     boxes_[index] = b.box;
     depths_[index] = uint8_t(b.depth);
     if (!b.children) {

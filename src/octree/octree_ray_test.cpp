@@ -17,14 +17,14 @@ using test::vertex;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-struct Visit {
+struct LeafVisit {
   uint32_t leaf;
   double t0, t1;
 };
 
-std::vector<Visit> walk(const Octree& tree, const glm::dvec3& o, const glm::dvec3& d, double tMin,
+std::vector<LeafVisit> walk(const Octree& tree, const glm::dvec3& o, const glm::dvec3& d, double tMin,
                         double tMax) {
-  std::vector<Visit> out;
+  std::vector<LeafVisit> out;
   tree.traverseRay(o, d, tMin, tMax, [&](uint32_t leaf, double t0, double t1) {
     out.push_back({leaf, t0, t1});
     return true;
@@ -34,9 +34,9 @@ std::vector<Visit> walk(const Octree& tree, const glm::dvec3& o, const glm::dvec
 
 // Independent reference: Liang–Barsky on every non-empty leaf, dividing by the direction and
 // testing containment for zero components, then sorted by (entry t, leaf).
-std::vector<Visit> bruteForce(const Octree& tree, const glm::dvec3& o, const glm::dvec3& d,
+std::vector<LeafVisit> bruteForce(const Octree& tree, const glm::dvec3& o, const glm::dvec3& d,
                               double tMin, double tMax) {
-  std::vector<Visit> out;
+  std::vector<LeafVisit> out;
   for (uint32_t leaf : test::nonEmptyLeaves(tree)) {
     const Bounds& b = tree.nodeBox(leaf);
     double t0 = tMin, t1 = tMax;
@@ -53,14 +53,14 @@ std::vector<Visit> bruteForce(const Octree& tree, const glm::dvec3& o, const glm
     }
     if (hit) out.push_back({leaf, t0, t1});
   }
-  std::sort(out.begin(), out.end(), [](const Visit& x, const Visit& y) {
+  std::sort(out.begin(), out.end(), [](const LeafVisit& x, const LeafVisit& y) {
     return x.t0 < y.t0 || (x.t0 == y.t0 && x.leaf < y.leaf);
   });
   return out;
 }
 
 // Same leaves in the same order with the same intervals (to rounding when `exact` is false).
-void expectSameWalk(const std::vector<Visit>& got, const std::vector<Visit>& want, bool exact) {
+void expectSameWalk(const std::vector<LeafVisit>& got, const std::vector<LeafVisit>& want, bool exact) {
   ASSERT_EQ(got.size(), want.size());
   for (size_t i = 0; i < got.size(); ++i) {
     ASSERT_EQ(got[i].leaf, want[i].leaf) << "position " << i;
@@ -157,7 +157,7 @@ TEST(OctreeRay, SubnormalDirectionComponentsAndNonFiniteRays) {
   for (const glm::dvec3& d : {glm::dvec3(1.0, 1e-310, -3e-320), glm::dvec3(1.0, -4.9e-324, 0.0)}) {
     const auto got = walk(tree, o, d, 0.0, kInf);
     EXPECT_FALSE(got.empty());
-    for (const Visit& v : got) EXPECT_FALSE(std::isnan(v.t0) || std::isnan(v.t1));
+    for (const LeafVisit& v : got) EXPECT_FALSE(std::isnan(v.t0) || std::isnan(v.t1));
     expectSameWalk(got, bruteForce(tree, o, d, 0.0, kInf), true);
   }
   EXPECT_TRUE(walk(tree, {NAN, 0.0, 0.0}, {1.0, 0.0, 0.0}, 0.0, kInf).empty());

@@ -54,14 +54,14 @@ Bounds grown(const Bounds& b, double d) {
   return {b.lo - d, b.hi + d};
 }
 
-struct Case {
+struct OverlapCase {
   Bounds box;
   glm::dvec3 a, b, c;
 };
 
 // Checks one case against sampling and clipping; `exact` asks agreement with clipping whenever
 // clipping reports overlap (inputs on a coarse dyadic grid make the SAT arithmetic exact).
-void check(const Case& k, bool exact, int& disagreements) {
+void check(const OverlapCase& k, bool exact, int& disagreements) {
   const bool got = triBoxOverlap(k.box, k.a, k.b, k.c);
   if (sampleInBox(k.box, k.a, k.b, k.c)) {
     ASSERT_TRUE(got) << "a sample point lies in the box";
@@ -87,7 +87,7 @@ TEST(TriBoxOverlap, AgreesWithClippingOnRandomTriangles) {
   int disagreements = 0, overlaps = 0;
   constexpr int kCases = 60000;
   for (int i = 0; i < kCases; ++i) {
-    Case k;
+    OverlapCase k;
     const glm::dvec3 centre{2 * u(rng), 2 * u(rng), 2 * u(rng)};
     const glm::dvec3 half{0.05 + pos(rng), 0.05 + pos(rng), 0.05 + pos(rng)};
     k.box = {centre - half, centre + half};
@@ -129,7 +129,7 @@ TEST(TriBoxOverlap, ExactOnDyadicGrid) {
   int disagreements = 0, touching = 0;
   constexpr int kCases = 60000;
   for (int i = 0; i < kCases; ++i) {
-    Case k;
+    OverlapCase k;
     const glm::dvec3 lo{0.5 * g(rng), 0.5 * g(rng), 0.5 * g(rng)};
     k.box = {lo, lo + 0.5 * glm::dvec3{side(rng), side(rng), side(rng)}};
     const auto p = [&] { return 0.5 * glm::dvec3{g(rng), g(rng), g(rng)}; };

@@ -9,7 +9,7 @@ namespace lzb::rzb {
 namespace {
 
 // One instance level of the traversal: where a tree's frame lies.
-struct Level {
+struct InstanceLevel {
   const DistributionTree* tree;
   Affine toWorld, toCamera;
   std::array<Plane, 6> planes;  // the view frustum in the tree's frame (normals not unit)
@@ -28,14 +28,14 @@ class Selector {
         near_(camera.nearPlane()), pixelScale_(camera.pixelsPerUnitAt(1.0)) {}
 
   void run() {
-    Level root = level(scene_.root(), Affine{}, 1.0, 1.0, 0);
+    InstanceLevel root = level(scene_.root(), Affine{}, 1.0, 1.0, 0);
     visitTree(root);
   }
 
  private:
-  Level level(const DistributionTree& tree, const Affine& toWorld, double areaScale, double stretch,
+  InstanceLevel level(const DistributionTree& tree, const Affine& toWorld, double areaScale, double stretch,
               uint64_t idBase) const {
-    Level l{&tree, toWorld, worldToCam_ * toWorld, {}, {}, areaScale, stretch, idBase};
+    InstanceLevel l{&tree, toWorld, worldToCam_ * toWorld, {}, {}, areaScale, stretch, idBase};
     const glm::dmat3 at = glm::transpose(toWorld.a);
     for (size_t k = 0; k < 6; ++k) {
       const Plane& p = frustum_.planes[k];
@@ -46,7 +46,7 @@ class Selector {
   }
 
   // 0: outside; else the mask of planes the box still crosses (bit k: plane k).
-  static unsigned cull(const Level& l, const Bounds& b, unsigned mask, bool& outside) {
+  static unsigned cull(const InstanceLevel& l, const Bounds& b, unsigned mask, bool& outside) {
     unsigned next = 0;
     outside = false;
     for (unsigned k = 0; k < 6; ++k) {
@@ -66,7 +66,7 @@ class Selector {
   }
 
   // View depth range of a node-frame box: depth is affine in the position.
-  static void depthRange(const Level& l, const Bounds& b, double& zmin, double& zmax) {
+  static void depthRange(const InstanceLevel& l, const Bounds& b, double& zmin, double& zmax) {
     const glm::dvec3 f{l.toCamera.a[0][2], l.toCamera.a[1][2], l.toCamera.a[2][2]};
     const glm::dvec3 c = b.center(), h = 0.5 * b.extent();
     const double zc = glm::dot(f, c) + l.toCamera.t.z;
@@ -75,11 +75,11 @@ class Selector {
     zmax = zc + zr;
   }
 
-  void visitTree(const Level& l) {
+  void visitTree(const InstanceLevel& l) {
     for (const DistributionTree::ClassRoot& c : l.tree->classes()) visitNode(l, c.root, 0x3f);
   }
 
-  void visitNode(const Level& l, uint32_t n, unsigned mask) {
+  void visitNode(const InstanceLevel& l, uint32_t n, unsigned mask) {
     if (out_.aborted) return;
     if (++out_.nodesVisited > params_.maxNodes) {
       out_.aborted = true;
@@ -104,7 +104,7 @@ class Selector {
     tree.forEachOwnInstance(n, [&](uint32_t i) { enterInstance(l, i, mask); });
   }
 
-  void enterInstance(const Level& l, uint32_t i, unsigned mask) {
+  void enterInstance(const InstanceLevel& l, uint32_t i, unsigned mask) {
     const DistributionTree& tree = *l.tree;
     if (!tree.instanceLive(i) || !(tree.instanceArea(i) > 0.0)) return;
     const InstanceRef& r = tree.instance(i);
@@ -115,7 +115,7 @@ class Selector {
                     l.stretch * r.stretch, l.idBase + r.idOffset));
   }
 
-  void emit(const Level& l, uint32_t n, Part part, double zmin, double zmax) {
+  void emit(const InstanceLevel& l, uint32_t n, Part part, double zmin, double zmax) {
     const DistributionTree& tree = *l.tree;
     SelectedBox b;
     b.tree = &tree;

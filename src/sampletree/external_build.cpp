@@ -54,13 +54,13 @@ class PassStream : public TriangleStream {
 };
 
 // The scratch folder, removed with everything in it when the build ends (or fails).
-struct ScratchDir {
+struct ScratchFolder {
   std::filesystem::path path;
-  explicit ScratchDir(const std::filesystem::path& parent)
+  explicit ScratchFolder(const std::filesystem::path& parent)
       : path(parent / (".lzb-build-tree-" + std::to_string(::getpid()))) {
     std::filesystem::create_directory(path);  // not its parents: a missing folder is an error
   }
-  ~ScratchDir() {
+  ~ScratchFolder() {
     std::error_code ec;
     std::filesystem::remove_all(path, ec);
   }
@@ -498,7 +498,7 @@ std::vector<std::vector<StreamTriangle>> partitionsToBuckets(
 // costs more to run than to read); the generator gets a thread of its own on the first pass, so
 // it overlaps the copy's writes.
 struct PassInput {
-  ScratchDir dir;
+  ScratchFolder dir;
   ReadAheadStream generated;
   std::optional<CopiedStream> copied;
   std::optional<ReadAheadStream> ahead;

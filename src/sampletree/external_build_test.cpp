@@ -31,11 +31,11 @@ fs::path scratch(const std::string& name) {
 
 // The in-memory store of `scene`, and the external one of `stream` with buckets of at most
 // `bucket` triangles; both files' bytes.
-struct Pair {
+struct TwoStores {
   std::vector<char> inMemory, external;
   ExternalReport report;
 };
-Pair buildBoth(const Scene& scene, const TriangleStream& stream, const TreeParams& params,
+TwoStores buildBoth(const Scene& scene, const TriangleStream& stream, const TreeParams& params,
                uint64_t bucket, const fs::path& dir) {
   writeTree(buildTree(scene, params, 2), (dir / "memory.lzbtree").string());
   ExternalOptions o;
@@ -43,7 +43,7 @@ Pair buildBoth(const Scene& scene, const TriangleStream& stream, const TreeParam
   o.bufferTriangles = 3000;  // many flushes: a bucket's triangles come back from many chunks
   o.topTriangles = 1 << 20;
   o.scratchDir = dir;
-  Pair p;
+  TwoStores p;
   p.report = buildTreeExternal(stream, params, o, 2, (dir / "external.lzbtree").string());
   p.inMemory = test::fileBytes(dir / "memory.lzbtree");
   p.external = test::fileBytes(dir / "external.lzbtree");
@@ -61,7 +61,7 @@ TEST(ExternalBuild, StreamedLandscapeGivesTheInMemoryStore) {
   const MeshChunkStream stream(base, chunks->triangles, chunks->generate,
                                MeshChunkStream::Kind::kGenerator);
   const fs::path dir = scratch("landscape");
-  const Pair p = buildBoth(scene, stream, TreeParams{13.8, 3, 32}, 200, dir);
+  const TwoStores p = buildBoth(scene, stream, TreeParams{13.8, 3, 32}, 200, dir);
   EXPECT_EQ(p.report.triangles, scene.expandedTriangles());
   EXPECT_GT(p.report.buckets, 500u);
   EXPECT_GT(p.report.topCells, 10u);
@@ -80,7 +80,7 @@ TEST(ExternalBuild, InstancedSceneAndOtherParametersGiveTheInMemoryStore) {
   const SceneStream stream(scene);
   for (const TreeParams params : {TreeParams{0.5, 9, 8}, TreeParams{13.8, 1, 64}}) {
     const fs::path dir = scratch("sphereflake");
-    const Pair p = buildBoth(scene, stream, params, 300, dir);
+    const TwoStores p = buildBoth(scene, stream, params, 300, dir);
     EXPECT_GT(p.report.buckets, 5u);
     ASSERT_EQ(p.external.size(), p.inMemory.size()) << params.c;
     EXPECT_TRUE(p.external == p.inMemory) << params.c;
@@ -90,7 +90,7 @@ TEST(ExternalBuild, InstancedSceneAndOtherParametersGiveTheInMemoryStore) {
 TEST(ExternalBuild, OneBucketHoldingEverythingIsTheInMemoryBuild) {
   const Scene scene = loadScene("builtin:sphereflake?depth=1", true);
   const fs::path dir = scratch("onebucket");
-  const Pair p = buildBoth(scene, SceneStream(scene), TreeParams{}, 1 << 20, dir);
+  const TwoStores p = buildBoth(scene, SceneStream(scene), TreeParams{}, 1 << 20, dir);
   EXPECT_EQ(p.report.buckets, 1u);
   EXPECT_EQ(p.report.topCells, 0u);
   EXPECT_TRUE(p.external == p.inMemory);

@@ -21,7 +21,7 @@
 
 namespace lzb::sqrt5 {
 
-struct CachedSample {
+struct ForestSample {
   glm::dvec2 uv;
   glm::dvec3 p, pu, pv;  // node frame: the point and the points at uv + u_level, uv + v_level
   uint32_t first = 0;    // children [first, first + count) (the self copy first), when refined
@@ -30,13 +30,13 @@ struct CachedSample {
 };
 
 struct CachedLine {
-  std::vector<CachedSample> samples;  // the roots first, in order
+  std::vector<ForestSample> samples;  // the roots first, in order
   uint32_t roots = 0;
   bool used = false;
-  uint64_t bytes() const { return samples.capacity() * sizeof(CachedSample); }
+  uint64_t bytes() const { return samples.capacity() * sizeof(ForestSample); }
 };
 
-struct CacheCounts {
+struct ForestCacheCounts {
   uint64_t hits = 0, misses = 0;
 };
 
@@ -63,10 +63,10 @@ class ForestCache {
 template <class Sink>
 void refineCachedLine(const ProceduralView& view, const Sqrt5Lattice& lattice, int line,
                       CachedLine& cache, std::vector<uint32_t>& stack,
-                      std::vector<glm::dvec2>& kids, RefineCounts& counts, CacheCounts& cc,
+                      std::vector<glm::dvec2>& kids, RefineCounts& counts, ForestCacheCounts& cc,
                       Sink&& sink) {
   const auto make = [&](const glm::dvec2& uv, int level, const glm::dvec3* p) {
-    CachedSample s;
+    ForestSample s;
     s.uv = uv;
     s.level = int16_t(level);
     s.p = p ? *p : view.nodePoint(uv);
@@ -89,7 +89,7 @@ void refineCachedLine(const ProceduralView& view, const Sqrt5Lattice& lattice, i
     while (!stack.empty()) {
       const uint32_t k = stack.back();
       stack.pop_back();
-      const CachedSample s = cache.samples[k];  // a copy: the vector may grow below
+      const ForestSample s = cache.samples[k];  // a copy: the vector may grow below
       const glm::dvec3 c = view.toView(s.p);
       if (view.undersampledBy(c, view.toView(s.pu) - c, view.toView(s.pv) - c)) {
         if (s.level < view.levels) {
@@ -105,7 +105,7 @@ void refineCachedLine(const ProceduralView& view, const Sqrt5Lattice& lattice, i
             cc.hits += s.count;
           }
           ++counts.refined;
-          const CachedSample& now = cache.samples[k];
+          const ForestSample& now = cache.samples[k];
           for (uint32_t j = now.first + now.count; j-- > now.first;) stack.push_back(j);
           continue;
         }

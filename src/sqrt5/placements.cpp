@@ -7,9 +7,9 @@
 
 namespace lzb::sqrt5 {
 
-std::vector<Placement> visiblePlacements(const Scene& scene, const std::vector<Bounds>& meshBounds,
+std::vector<SampledPlacement> visiblePlacements(const Scene& scene, const std::vector<Bounds>& meshBounds,
                                          const Camera& camera) {
-  std::vector<Placement> out;
+  std::vector<SampledPlacement> out;
   const auto add = [&](uint32_t node, const glm::dmat4& world, uint64_t idBase, const Bounds& b) {
     require(out.size() < kMaxPlacements, scene.source,
             "more than 2^22 visible placements: too instanced for sqrt5's per-placement sampling");

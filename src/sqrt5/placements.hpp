@@ -15,7 +15,7 @@ namespace lzb::sqrt5 {
 // More visible placements than this are refused (InputError): the list is per frame.
 constexpr uint64_t kMaxPlacements = uint64_t(1) << 22;
 
-struct Placement {
+struct SampledPlacement {
   uint32_t node = 0;
   glm::dmat4 world{1.0};
   uint64_t idBase = 0;
@@ -23,7 +23,7 @@ struct Placement {
 };
 
 // meshBounds: per node, the bounds of its own surface (node frame; empty when it has none).
-std::vector<Placement> visiblePlacements(const Scene& scene, const std::vector<Bounds>& meshBounds,
+std::vector<SampledPlacement> visiblePlacements(const Scene& scene, const std::vector<Bounds>& meshBounds,
                                          const Camera& camera);
 
 // The nearest and farthest distance from the eye to a box (0 inside it).

@@ -67,7 +67,7 @@ void Sqrt5Renderer::plan(Frame& f) {
   f.halton.assign(f.placements.size(), 0);
   f.polygons.assign(f.placements.size(), 0);
   for (size_t i = 0; i < f.placements.size(); ++i) {
-    const Placement& p = f.placements[i];
+    const SampledPlacement& p = f.placements[i];
     const Node& node = scene_.nodes[p.node];
     if (node.procedural && node.procedural->spec.kind == ProceduralKind::kTerrain)
       f.sectors[i] = Sector::make(node.procedural->spec, p.world, cam);
@@ -134,7 +134,7 @@ void Sqrt5Renderer::attachCache(Frame& f) {
   if (params_.cacheMb == 0) return;
   for (size_t k = 0; k < f.mine.size(); ++k) {
     const PlacementJob& job = f.jobs[f.mine[k]];
-    const Placement& p = f.placements[job.placed];
+    const SampledPlacement& p = f.placements[job.placed];
     if (f.side[job.placed] == 0 || f.sectors[job.placed]) continue;
     for (uint64_t line = job.begin; line < job.end; ++line)
       f.cached[k].push_back(&cache_.line({p.node, p.idBase, f.side[job.placed], line}));
@@ -147,7 +147,7 @@ void Sqrt5Renderer::drawJob(const Frame& f, size_t k, Splatter& out, DrawCounts&
   const PlacementJob& job = f.jobs[f.mine[k]];
   auto& stack = scratch.stack;
   auto& kids = scratch.kids;
-  const Placement& p = f.placements[job.placed];
+  const SampledPlacement& p = f.placements[job.placed];
   const Node& node = scene_.nodes[p.node];
   if (f.polygons[job.placed] > 0) return;  // drawn by drawPolygons
   const auto splat = [&](const glm::dvec3& c, uint64_t id, int) {
@@ -227,7 +227,7 @@ std::pair<uint64_t, uint64_t> Sqrt5Renderer::drawPolygons(const Frame& f, Frameb
   for (uint32_t k : f.mine) {
     const PlacementJob& job = f.jobs[k];
     if (f.polygons[job.placed] == 0) continue;
-    const Placement& p = f.placements[job.placed];
+    const SampledPlacement& p = f.placements[job.placed];
     wholeNodes_.add(lists, p.node, p.world, p.idBase, scene_.nodes[p.node].mesh.size());
   }
   if (!lists.lists.empty()) raster_.draw(scene_, *f.camera, lists, {}, options_.threads, fb);

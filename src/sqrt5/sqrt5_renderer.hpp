@@ -64,7 +64,7 @@ class Sqrt5Renderer : public Renderer {
   struct Frame {
     const Camera* camera = nullptr;
     WorkShare share;
-    std::vector<Placement> placements;
+    std::vector<SampledPlacement> placements;
     std::vector<int> side;           // per placement: initial grid side n (procedural), else 0
     std::vector<std::optional<Sector>> sectors;  // per placement: a terrain's sector
     std::vector<uint64_t> halton;    // per placement: Halton prefix length (mesh), else 0
@@ -82,7 +82,7 @@ class Sqrt5Renderer : public Renderer {
   struct DrawCounts {
     RefineCounts trees;
     HorizonCounts horizon;
-    CacheCounts cache;
+    ForestCacheCounts cache;
     uint64_t haltonDrawn = 0, splatted = 0;
     void merge(const DrawCounts& o);
   };

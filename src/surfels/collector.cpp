@@ -8,8 +8,8 @@
 
 namespace lzb::surfels {
 
-CollectorLayout CollectorLayout::of(Quality q) {
-  if (q == Quality::kLow) return {8, 4, 3, 12, 4};
+CollectorLayout CollectorLayout::of(CollectorQuality q) {
+  if (q == CollectorQuality::kLow) return {8, 4, 3, 12, 4};
   return {10, 6, 6, 15, 6};
 }
 
@@ -93,7 +93,7 @@ Surfel SurfelCollector::unpack(const CollectorLayout& l, int shift, uint32_t key
   return s;
 }
 
-SurfelCollector::SurfelCollector(Quality quality, int shift, std::span<const Surfel> surfels,
+SurfelCollector::SurfelCollector(CollectorQuality quality, int shift, std::span<const Surfel> surfels,
                                  std::span<const uint32_t> triangles)
     : quality_(quality),
       layout_(CollectorLayout::of(quality)),
@@ -120,13 +120,13 @@ SurfelCollector::SurfelCollector(Quality quality, int shift, std::span<const Sur
       triangles.empty() ? 0 : *std::max_element(triangles.begin(), triangles.end());
   triangleBytes_ = maxTriangle < 256 ? 1 : maxTriangle < 65536 ? 2 : 4;
   triangles_.resize(size_ * uint64_t(triangleBytes_));
-  if (quality == Quality::kLow)
+  if (quality == CollectorQuality::kLow)
     words32_.resize(size_);
   else
     words48_.resize(size_);
   for (size_t i = 0; i < size_; ++i) {
     const auto& [key, data, tri] = packed[i];
-    if (quality == Quality::kLow)
+    if (quality == CollectorQuality::kLow)
       words32_[i] = uint32_t(data);
     else
       words48_[i] = {uint16_t(data), uint16_t(data >> 16), uint16_t(data >> 32)};
@@ -136,7 +136,7 @@ SurfelCollector::SurfelCollector(Quality quality, int shift, std::span<const Sur
 }
 
 uint64_t SurfelCollector::data(uint64_t i) const {
-  if (quality_ == Quality::kLow) return words32_[i];
+  if (quality_ == CollectorQuality::kLow) return words32_[i];
   const auto& w = words48_[i];
   return uint64_t(w[0]) | uint64_t(w[1]) << 16 | uint64_t(w[2]) << 32;
 }
@@ -153,7 +153,7 @@ uint32_t SurfelCollector::triangle(uint64_t i) const {
 }
 
 void SurfelCollector::keyPosition(uint32_t key, uint32_t& x, uint32_t& y, uint32_t& z) const {
-  unshuffleKey(quality_ == Quality::kHigh ? key >> 3 : key, x, y, z);
+  unshuffleKey(quality_ == CollectorQuality::kHigh ? key >> 3 : key, x, y, z);
   x <<= shift_;
   y <<= shift_;
   z <<= shift_;

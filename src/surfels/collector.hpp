@@ -29,7 +29,7 @@
 
 namespace lzb::surfels {
 
-enum class Quality { kLow, kHigh };
+enum class CollectorQuality { kLow, kHigh };
 
 struct CollectorLayout {
   int positionBits;  // per axis (Q = 2^positionBits)
@@ -37,7 +37,7 @@ struct CollectorLayout {
   int colourBits;    // per channel
   int keyBits;       // hash key bits
   int entryBytes;    // bytes per stored entry
-  static CollectorLayout of(Quality q);
+  static CollectorLayout of(CollectorQuality q);
   int normalBits() const { return 3 + 2 * normalLevels; }
   int dataBits() const { return 3 * positionBits + normalBits() + 3 * colourBits - keyBits; }
   uint32_t lattice() const { return uint32_t(1) << positionBits; }
@@ -64,10 +64,10 @@ class SurfelCollector {
   SurfelCollector() = default;
   // Packs `surfels` (triangles[i]: surfel i's representative triangle) into the table. shift:
   // the lowest coordinate bit the key takes (at most positionBits - 4).
-  SurfelCollector(Quality quality, int shift, std::span<const Surfel> surfels,
+  SurfelCollector(CollectorQuality quality, int shift, std::span<const Surfel> surfels,
                   std::span<const uint32_t> triangles);
 
-  Quality quality() const { return quality_; }
+  CollectorQuality quality() const { return quality_; }
   const CollectorLayout& layout() const { return layout_; }
   int shift() const { return shift_; }
   uint64_t size() const { return size_; }
@@ -80,7 +80,7 @@ class SurfelCollector {
   // The key's contribution to the position (its bits already in place) and, high quality, the
   // normal octant it fixes.
   void keyPosition(uint32_t key, uint32_t& x, uint32_t& y, uint32_t& z) const;
-  uint32_t keyOctant(uint32_t key) const { return quality_ == Quality::kHigh ? key & 7u : 0u; }
+  uint32_t keyOctant(uint32_t key) const { return quality_ == CollectorQuality::kHigh ? key & 7u : 0u; }
   // Raw storage, for the renderer's inner loop.
   uint64_t data(uint64_t i) const;
   const uint32_t* words32() const { return words32_.data(); }
@@ -101,8 +101,8 @@ class SurfelCollector {
   static Surfel unpack(const CollectorLayout& layout, int shift, uint32_t key, uint64_t data);
 
  private:
-  Quality quality_ = Quality::kLow;
-  CollectorLayout layout_ = CollectorLayout::of(Quality::kLow);
+  CollectorQuality quality_ = CollectorQuality::kLow;
+  CollectorLayout layout_ = CollectorLayout::of(CollectorQuality::kLow);
   int shift_ = 0;
   uint64_t size_ = 0;
   std::vector<uint32_t> starts_;                  // keys() + 1

@@ -29,8 +29,8 @@ std::vector<Surfel> randomSurfels(const CollectorLayout& l, size_t n, uint64_t s
 }
 
 TEST(SurfelCollector, SplitsTheBitsAsThePaper) {
-  const CollectorLayout low = CollectorLayout::of(Quality::kLow),
-                        high = CollectorLayout::of(Quality::kHigh);
+  const CollectorLayout low = CollectorLayout::of(CollectorQuality::kLow),
+                        high = CollectorLayout::of(CollectorQuality::kHigh);
   EXPECT_EQ(3 * low.positionBits + low.normalBits() + 3 * low.colourBits, 44);  // 24 + 11 + 9
   EXPECT_EQ(low.keyBits, 12);
   EXPECT_EQ(low.dataBits(), 32);
@@ -39,7 +39,7 @@ TEST(SurfelCollector, SplitsTheBitsAsThePaper) {
   EXPECT_EQ(high.keyBits, 15);
   EXPECT_EQ(high.dataBits(), 48);
   EXPECT_EQ(high.entryBytes, 6);
-  for (Quality q : {Quality::kLow, Quality::kHigh}) {
+  for (CollectorQuality q : {CollectorQuality::kLow, CollectorQuality::kHigh}) {
     const CollectorLayout l = CollectorLayout::of(q);
     for (int shift = 0; shift <= l.positionBits - 4; ++shift)
       for (const Surfel& s : randomSurfels(l, 2000, 3)) {
@@ -51,10 +51,10 @@ TEST(SurfelCollector, SplitsTheBitsAsThePaper) {
         // The key holds 4 bits of each coordinate from the shift on (and, high, the normal's
         // octant): surfels of one key share those bits.
         uint32_t lx, ly, lz;
-        unshuffleKey(q == Quality::kHigh ? key >> 3 : key, lx, ly, lz);
+        unshuffleKey(q == CollectorQuality::kHigh ? key >> 3 : key, lx, ly, lz);
         EXPECT_EQ(lx, s.x >> shift & 15u);
         EXPECT_EQ(lz, s.z >> shift & 15u);
-        if (q == Quality::kHigh) {
+        if (q == CollectorQuality::kHigh) {
           EXPECT_EQ(key & 7u, s.normal >> 12);
         }
         EXPECT_EQ(SurfelCollector::unpack(l, shift, key, data), s);
@@ -63,7 +63,7 @@ TEST(SurfelCollector, SplitsTheBitsAsThePaper) {
 }
 
 TEST(SurfelCollector, HoldsEverySurfelWithItsTriangleOnce) {
-  for (Quality q : {Quality::kLow, Quality::kHigh}) {
+  for (CollectorQuality q : {CollectorQuality::kLow, CollectorQuality::kHigh}) {
     const CollectorLayout l = CollectorLayout::of(q);
     const std::vector<Surfel> in = randomSurfels(l, 30000, 11);
     std::vector<uint32_t> tris(in.size());
@@ -87,13 +87,13 @@ TEST(SurfelCollector, HoldsEverySurfelWithItsTriangleOnce) {
 }
 
 TEST(SurfelCollector, SideTableIsAsNarrowAsTheTriangleCount) {
-  const CollectorLayout l = CollectorLayout::of(Quality::kLow);
+  const CollectorLayout l = CollectorLayout::of(CollectorQuality::kLow);
   const std::vector<Surfel> in = randomSurfels(l, 10, 1);
-  EXPECT_EQ(SurfelCollector(Quality::kLow, 0, in, std::vector<uint32_t>(10, 255)).triangleBytes(),
+  EXPECT_EQ(SurfelCollector(CollectorQuality::kLow, 0, in, std::vector<uint32_t>(10, 255)).triangleBytes(),
             1);
-  EXPECT_EQ(SurfelCollector(Quality::kLow, 0, in, std::vector<uint32_t>(10, 65535)).triangleBytes(),
+  EXPECT_EQ(SurfelCollector(CollectorQuality::kLow, 0, in, std::vector<uint32_t>(10, 65535)).triangleBytes(),
             2);
-  const SurfelCollector wide(Quality::kLow, 0, in, std::vector<uint32_t>(10, 65536));
+  const SurfelCollector wide(CollectorQuality::kLow, 0, in, std::vector<uint32_t>(10, 65536));
   EXPECT_EQ(wide.triangleBytes(), 4);
   EXPECT_EQ(wide.triangle(9), 65536u);
 }
@@ -104,7 +104,7 @@ TEST(SurfelCollector, RoundTripStaysWithinTheQuantizationBounds) {
   Mesh box;  // only its bounds matter: the domain
   box.add({-2.0f, -1.0f, 0.5f}, {3.0f, 0.0f, 0.5f}, {0.0f, 2.5f, 4.0f}, 0);
   const Domain d = Domain::around(box);
-  for (Quality q : {Quality::kLow, Quality::kHigh}) {
+  for (CollectorQuality q : {CollectorQuality::kLow, CollectorQuality::kHigh}) {
     const CollectorLayout l = CollectorLayout::of(q);
     const OctahedralNormals normals(l.normalLevels);
     std::mt19937_64 rng(5);

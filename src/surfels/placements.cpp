@@ -31,13 +31,13 @@ struct Switch {
   const Camera& camera;
   const SurfelParams& params;
   const double tanX, tanY;
-  std::vector<Placement> out;
+  std::vector<SurfelPlacement> out;
 
   // The cube's projected extent in pixels at the object's nearest depth. A cell's edges span
   // |right . e| across and |forward . e| in depth, which adds |x / z| of that off axis: the
   // largest |x / z| over the object's box corners (the ratio's extremes over a box with z > 0
   // lie at its corners), at most the frustum's edge.
-  void measure(Placement& p, const Domain& d, const Bounds& box) const {
+  void measure(SurfelPlacement& p, const Domain& d, const Bounds& box) const {
     double sx = 0.0, sy = 0.0, sz = 0.0;
     for (int i = 0; i < 3; ++i) {
       const glm::dvec3 e = glm::dvec3(p.world[i]) * d.side;
@@ -63,7 +63,7 @@ struct Switch {
   }
 
   void add(uint32_t node, const glm::dmat4& world, uint64_t idBase) {
-    Placement p;
+    SurfelPlacement p;
     p.node = node;
     p.world = world;
     p.idBase = idBase;
@@ -77,7 +77,7 @@ struct Switch {
 
 }  // namespace
 
-std::vector<Placement> visiblePlacements(const Scene& scene, const std::vector<Domain>& domains,
+std::vector<SurfelPlacement> visiblePlacements(const Scene& scene, const std::vector<Domain>& domains,
                                          const std::vector<Bounds>& meshBounds,
                                          const Camera& camera, const SurfelParams& params) {
   const double halfW = 0.5 * camera.width(), halfH = 0.5 * camera.height();

@@ -32,7 +32,7 @@ namespace lzb::surfels {
 
 constexpr int kPolygons = -1;
 
-struct Placement {
+struct SurfelPlacement {
   uint32_t node = 0;
   glm::dmat4 world{1.0};
   uint64_t idBase = 0;
@@ -52,7 +52,7 @@ LevelChoice chooseLevel(double cellPx1, const SurfelParams& params);
 // Every placement of an object whose cube meets the frustum, in expanded-ID order, with its
 // depth, projected size and level (domains: per node, its surfel cube; meshBounds: per node, the
 // bounds of its own triangles).
-std::vector<Placement> visiblePlacements(const Scene& scene, const std::vector<Domain>& domains,
+std::vector<SurfelPlacement> visiblePlacements(const Scene& scene, const std::vector<Domain>& domains,
                                          const std::vector<Bounds>& meshBounds,
                                          const Camera& camera, const SurfelParams& params);
 

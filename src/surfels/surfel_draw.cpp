@@ -31,7 +31,7 @@ PlacedLevel PlacedLevel::make(const SurfelLevel& level, const glm::dmat4& world,
   // An octant faces away from the whole cube when, on every axis, the eye lies beyond the cube on
   // the side the octant's normals point away from (then each term of n . (q - eye) is > 0).
   const CollectorLayout& l = level.collector.layout();
-  if (cullBackfaces && level.collector.quality() == Quality::kHigh) {
+  if (cullBackfaces && level.collector.quality() == CollectorQuality::kHigh) {
     const float last = float(l.lattice() - 1);
     for (uint32_t s = 0; s < 8; ++s) {
       bool away = true;
@@ -159,7 +159,7 @@ void drawRange(const PlacedLevel& p, uint64_t begin, uint64_t end, bool cull,
 template <class Sink>
 void drawJob(const PlacedLevel& p, const SurfelJob& j, bool cull, const OctahedralNormals& normals,
              Sink& sink, DrawCounts& counts) {
-  const bool high = p.level->collector.quality() == Quality::kHigh;
+  const bool high = p.level->collector.quality() == CollectorQuality::kHigh;
   switch (p.level->collector.triangleBytes() * 2 + int(high)) {
     case 2:
       return drawRange<false, uint8_t>(p, j.begin, j.end, cull, normals, sink, counts);

@@ -19,7 +19,7 @@ void expectRefused(SurfelOptionText t, const std::string& option) {
 
 TEST(SurfelOptions, DefaultsAreTheDocumentedOnes) {
   const SurfelParams p = parseSurfelOptions({});
-  EXPECT_EQ(p.quality, Quality::kHigh);
+  EXPECT_EQ(p.quality, CollectorQuality::kHigh);
   EXPECT_EQ(p.grids, (std::vector<int>{1, 2, 4, 8, 16, 32, 64, 128, 256, 512}));
   EXPECT_EQ(p.sprite, 1);
   EXPECT_FALSE(p.disc);

@@ -17,12 +17,12 @@ std::vector<int> autoGrids(int lattice) {
   return grids;
 }
 
-std::vector<int> parseGrids(const std::string& text, Quality quality) {
+std::vector<int> parseGrids(const std::string& text, CollectorQuality quality) {
   const int lattice = int(CollectorLayout::of(quality).lattice());
   if (text == "auto") return autoGrids(lattice);
   const std::string expected = "auto or a comma-separated ascending list of powers of two in [1, " +
                                std::to_string(lattice) + "] (the " +
-                               (quality == Quality::kLow ? "low" : "high") +
+                               (quality == CollectorQuality::kLow ? "low" : "high") +
                                "-quality collector's lattice, --surfel-quality)";
   std::vector<int> grids;
   std::stringstream in(text);
@@ -60,7 +60,7 @@ double SurfelParams::coverSide(int d) const {
 
 nlohmann::json SurfelParams::toJson() const {
   return {{"surfelize", surfelize == Surfelizer::kRaster ? "raster" : "shots"},
-          {"quality", quality == Quality::kLow ? "low" : "high"},
+          {"quality", quality == CollectorQuality::kLow ? "low" : "high"},
           {"grids", grids},
           {"splat", sprite},
           {"sprite_shape", disc ? "disc" : "square"},
@@ -79,7 +79,7 @@ SurfelParams parseSurfelOptions(const SurfelOptionText& t) {
   p.surfelize = t.surfelize == "raster" ? Surfelizer::kRaster : Surfelizer::kShots;
   require(t.quality == "low" || t.quality == "high", "--surfel-quality",
           "expected low or high, got '" + t.quality + "'");
-  p.quality = t.quality == "low" ? Quality::kLow : Quality::kHigh;
+  p.quality = t.quality == "low" ? CollectorQuality::kLow : CollectorQuality::kHigh;
   p.grids = parseGrids(t.grids, p.quality);
   require(t.shape == "square" || t.shape == "disc", "--sprite-shape",
           "expected square or disc, got '" + t.shape + "'");

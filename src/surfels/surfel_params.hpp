@@ -12,7 +12,7 @@ namespace lzb::surfels {
 
 struct SurfelParams {
   Surfelizer surfelize = Surfelizer::kRaster;                        // --surfelize raster | shots
-  Quality quality = Quality::kHigh;                                  // --surfel-quality low | high
+  CollectorQuality quality = CollectorQuality::kHigh;                                  // --surfel-quality low | high
   std::vector<int> grids = {1, 2, 4, 8, 16, 32, 64, 128, 256, 512};  // --surfel-grids (auto)
   int sprite = 1;             // --splat: the largest sprite, d x d pixels
   bool disc = false;          // --sprite-shape square | disc

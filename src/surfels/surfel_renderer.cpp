@@ -76,7 +76,7 @@ uint64_t SurfelRenderer::buildLevels(const Frame& f) {
   // Every rank builds every level the frame uses, in placement order: all then know each
   // placement's surfel count, which the budget and the deal need alike.
   uint64_t built = 0;
-  for (const Placement& p : f.placements)
+  for (const SurfelPlacement& p : f.placements)
     if (p.level != kPolygons && !levels_[p.node][size_t(p.level)]) {
       level(p.node, p.level);
       ++built;
@@ -88,7 +88,7 @@ void SurfelRenderer::applyBudget(Frame& f) const {
   f.work.resize(f.placements.size());
   f.selected = 0;
   for (size_t i = 0; i < f.placements.size(); ++i) {
-    const Placement& p = f.placements[i];
+    const SurfelPlacement& p = f.placements[i];
     f.work[i] = p.level == kPolygons ? scene_.nodes[p.node].mesh.size()
                                      : levels_[p.node][size_t(p.level)]->collector.size();
     if (p.level != kPolygons) f.selected += f.work[i];
@@ -120,7 +120,7 @@ void SurfelRenderer::drawPolygons(const Frame& f, Framebuffer& fb, FrameStats& s
   DrawLists lists;
   uint64_t placements = 0;
   for (uint32_t k : f.mine) {
-    const Placement& p = f.placements[f.items[k].placed];
+    const SurfelPlacement& p = f.placements[f.items[k].placed];
     if (p.level != kPolygons) continue;
     wholeNodes_.add(lists, p.node, p.world, p.idBase, scene_.nodes[p.node].mesh.size());
     ++placements;
@@ -137,7 +137,7 @@ void SurfelRenderer::drawSurfelPass(const Frame& f, FrameStats& stats) {
   uint32_t last = ~0u;  // items of one placement are consecutive
   for (uint32_t k : f.mine) {
     const PlacementJob& item = f.items[k];
-    const Placement& p = f.placements[item.placed];
+    const SurfelPlacement& p = f.placements[item.placed];
     if (p.level == kPolygons) continue;
     if (item.placed != last) {
       placed.push_back(PlacedLevel::make(*levels_[p.node][size_t(p.level)], p.world, p.idBase,
@@ -209,7 +209,7 @@ void SurfelRenderer::report(const Frame& f, FrameStats& stats) const {
   std::map<std::string, std::set<int>> objectGrids;
   uint64_t polygons = 0, drawn = 0;
   for (size_t i = 0; i < f.placements.size(); ++i) {
-    const Placement& p = f.placements[i];
+    const SurfelPlacement& p = f.placements[i];
     const std::string& name = scene_.nodes[p.node].name;
     if (p.level == kPolygons) {
       ++polygons;

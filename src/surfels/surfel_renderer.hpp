@@ -49,7 +49,7 @@ class SurfelRenderer : public Renderer {
   struct Frame {
     const Camera* camera = nullptr;
     WorkShare share;
-    std::vector<Placement> placements;
+    std::vector<SurfelPlacement> placements;
     std::vector<uint64_t> work;    // per placement: surfels to draw, or triangles
     uint64_t selected = 0;         // surfels of every surfel placement (before the budget)
     uint64_t budget = 0;           // surfels the budget buys (0: no budget)

@@ -46,7 +46,7 @@ struct Domain {
 
 struct SurfelizeParams {
   Surfelizer method = Surfelizer::kRaster;
-  Quality quality = Quality::kHigh;
+  CollectorQuality quality = CollectorQuality::kHigh;
   int grid = 64;  // cells per axis: a power of two, at most the collector's lattice
   bool split = true;
   int threads = 1;

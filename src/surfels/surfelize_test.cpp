@@ -180,7 +180,7 @@ void expectSameLevel(const SurfelLevel& a, const SurfelLevel& b) {
 TEST(Surfelize, TheSameSurfelsForAnyThreadCount) {
   const Mesh m = randomTriangles(300, 8);
   for (Surfelizer how : {Surfelizer::kRaster, Surfelizer::kShots})
-    for (Quality q : {Quality::kLow, Quality::kHigh}) {
+    for (CollectorQuality q : {CollectorQuality::kLow, CollectorQuality::kHigh}) {
       const OctahedralNormals normals(CollectorLayout::of(q).normalLevels);
       SurfelizeParams p;
       p.method = how;
