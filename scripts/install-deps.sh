@@ -8,7 +8,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config git ccache
   libopenmpi-dev openmpi-bin
-  libglm-dev libembree-dev libosmesa6-dev libopenimageio-dev openimageio-tools
+  libglm-dev libembree-dev libosmesa6-dev libopenexr-dev libpng-dev libopenimageio-dev
   libassimp-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev librandom123-dev
   libgtest-dev
 )

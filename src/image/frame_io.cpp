@@ -1,14 +1,30 @@
 #include "src/image/frame_io.hpp"
 
-#include <OpenImageIO/half.h>
-#include <OpenImageIO/imageio.h>
+// OpenEXR and libpng directly, not OpenImageIO: Debian's libOpenImageIO loads 261 shared
+// libraries, 0.35 s at every start of every program linked with it (tests/README.md).
+#include <Imath/half.h>
+#include <OpenEXR/IexBaseExc.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfDoubleAttribute.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfThreading.h>
+#include <OpenEXR/ImfVecAttribute.h>
+#include <png.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <functional>
 #include <memory>
+#include <mutex>
+#include <thread>
 #include <vector>
 
 #include "src/core/atomic_file.hpp"
@@ -17,31 +33,33 @@
 namespace lzb {
 namespace {
 
-using OIIO::ImageInput;
-using OIIO::ImageOutput;
-using OIIO::ImageSpec;
-using OIIO::TypeDesc;
-
-// Rows moved per OIIO call: a few zip blocks of 16 lines, so large frames never sit whole in
+// Rows moved per OpenEXR call: a few zip blocks of 16 lines, so large frames never sit whole in
 // the native (up to 160 bytes per pixel) layout.
 constexpr int kRowsPerBlock = 64;
 
 struct ExrChannel {
   std::string name;
-  TypeDesc type;
+  Imf::PixelType type;
 };
 
+size_t bytesOf(Imf::PixelType type) {
+  return type == Imf::HALF ? 2 : 4;
+}
+
+const char* typeName(Imf::PixelType type) {
+  return type == Imf::HALF ? "half" : type == Imf::FLOAT ? "float" : "uint";
+}
+
 std::vector<ExrChannel> frameChannels(bool withSubsamples) {
-  std::vector<ExrChannel> c = {{"R", TypeDesc::HALF},   {"G", TypeDesc::HALF},
-                               {"B", TypeDesc::HALF},   {"A", TypeDesc::HALF},
-                               {"Z", TypeDesc::FLOAT},  {kIdLowChannel, TypeDesc::UINT32},
-                               {kIdHighChannel, TypeDesc::UINT32}};
+  std::vector<ExrChannel> c = {
+      {"R", Imf::HALF},  {"G", Imf::HALF},           {"B", Imf::HALF},           {"A", Imf::HALF},
+      {"Z", Imf::FLOAT}, {kIdLowChannel, Imf::UINT}, {kIdHighChannel, Imf::UINT}};
   if (!withSubsamples) return c;
   for (int k = 0; k < kSubsamples; ++k) {
-    c.push_back({subsampleIdLowChannel(k), TypeDesc::UINT32});
-    c.push_back({subsampleIdHighChannel(k), TypeDesc::UINT32});
+    c.push_back({subsampleIdLowChannel(k), Imf::UINT});
+    c.push_back({subsampleIdHighChannel(k), Imf::UINT});
   }
-  for (const char* name : kBoxColorChannels) c.push_back({name, TypeDesc::FLOAT});
+  for (const char* name : kBoxColorChannels) c.push_back({name, Imf::FLOAT});
   return c;
 }
 
@@ -49,11 +67,20 @@ std::vector<ExrChannel> frameChannels(bool withSubsamples) {
   throw InputError(path.string() + ": " + what);
 }
 
-// OIIO reports errors through the object or, when no object was made, globally.
-std::string oiioError(const std::string& objectError) {
-  if (!objectError.empty()) return objectError;
-  std::string global = OIIO::geterror();
-  return global.empty() ? "unknown OpenImageIO error" : global;
+// Runs an OpenEXR call, reporting its exceptions as bad input naming the file.
+template <typename F>
+auto exrCall(const std::filesystem::path& path, F&& call) {
+  try {
+    return call();
+  } catch (const Iex::BaseExc& e) {
+    fail(path, e.what());
+  }
+}
+
+// As OpenImageIO did: zip blocks compressed on every core (the bytes do not depend on it).
+void useEveryCoreForExr() {
+  static std::once_flag once;
+  std::call_once(once, [] { Imf::setGlobalThreadCount(int(std::thread::hardware_concurrency())); });
 }
 
 // Appends pixel values in the EXR's native per-channel layout.
@@ -103,23 +130,39 @@ void packPixel(const Framebuffer& fb, const ReferenceFrame* sub, size_t i, RowPa
   for (float mean : sub->boxColor[i]) row.put(mean / 255.0f);
 }
 
-// Writes the image to `tmp` (named like `path`) in blocks of rows filled by `fill`.
-void writeImage(const std::filesystem::path& path, const std::filesystem::path& tmp,
-                const ImageSpec& spec,
-                const std::function<void(int y0, int y1, std::vector<unsigned char>&)>& fill) {
-  auto out = ImageOutput::create(tmp.string());
-  if (!out) fail(path, oiioError(""));
-  if (!out->open(tmp.string(), spec)) fail(path, oiioError(out->geterror()));
-  std::vector<unsigned char> block;
-  bool written = true;
-  for (int y0 = 0; y0 < spec.height && written; y0 += kRowsPerBlock) {
-    const int y1 = std::min(y0 + kRowsPerBlock, spec.height);
-    fill(y0, y1, block);
-    // TypeUnknown: the buffer is in the spec's native per-channel formats.
-    written = out->write_scanlines(y0, y1, 0, TypeDesc::UNKNOWN, block.data());
+// Slices of `channels` over interleaved rows y0..y1-1 of `width` pixels starting at `block`.
+Imf::FrameBuffer interleavedSlices(const std::vector<ExrChannel>& channels, unsigned char* block,
+                                   int x0, int y0, int width, int rows) {
+  size_t pixelBytes = 0;
+  for (const ExrChannel& c : channels) pixelBytes += bytesOf(c.type);
+  Imf::FrameBuffer slices;
+  size_t offset = 0;
+  for (const ExrChannel& c : channels) {
+    slices.insert(c.name, Imf::Slice::Make(c.type, block + offset, Imath::V2i(x0, y0), width, rows,
+                                           pixelBytes, pixelBytes * size_t(width)));
+    offset += bytesOf(c.type);
   }
-  const bool closed = out->close();
-  if (!written || !closed) fail(path, oiioError(out->geterror()));
+  return slices;
+}
+
+// Writes `header`'s image of `channels` to `tmp` (named like `path`) in blocks of rows filled by
+// `fill` in the channels' interleaved layout.
+void writeExrImage(const std::filesystem::path& path, const std::filesystem::path& tmp,
+                   const Imf::Header& header, const std::vector<ExrChannel>& channels,
+                   const std::function<void(int y0, int y1, std::vector<unsigned char>&)>& fill) {
+  useEveryCoreForExr();
+  const Imath::Box2i window = header.dataWindow();
+  const int width = window.max.x + 1, height = window.max.y + 1;
+  exrCall(path, [&] {
+    Imf::OutputFile out(tmp.c_str(), header);
+    std::vector<unsigned char> block;
+    for (int y0 = 0; y0 < height; y0 += kRowsPerBlock) {
+      const int y1 = std::min(y0 + kRowsPerBlock, height);
+      fill(y0, y1, block);
+      out.setFrameBuffer(interleavedSlices(channels, block.data(), 0, y0, width, y1 - y0));
+      out.writePixels(y1 - y0);
+    }
+  });
 }
 
 // writeAtomically, with a failed rename also reported as bad input naming the file.
@@ -132,68 +175,64 @@ void writeFileAtomically(const std::filesystem::path& path,
   }
 }
 
-int channelIndex(const ImageSpec& spec, const std::string& name) {
-  for (int c = 0; c < spec.nchannels; ++c)
-    if (spec.channelnames[size_t(c)] == name) return c;
-  return -1;
-}
-
-int findChannel(const ImageSpec& spec, const std::filesystem::path& path, const std::string& name) {
-  const int c = channelIndex(spec, name);
-  if (c < 0) fail(path, "missing channel \"" + name + "\"");
-  return c;
-}
-
-// An EXR open for reading in blocks of rows, each in the native per-channel layout.
+// An EXR open for reading in blocks of rows: the channels asked for, interleaved.
 class ExrReader {
  public:
-  explicit ExrReader(const std::filesystem::path& path) : path_(path) {
-    in_ = ImageInput::open(path.string());
-    if (!in_) fail(path, oiioError(""));
-    spec_ = in_->spec();
-    if (spec_.deep || spec_.depth != 1) fail(path, "not a flat 2-D image");
-    if (spec_.width <= 0 || spec_.height <= 0) fail(path, "empty image");
-    pixelBytes_ = spec_.pixel_bytes(true);
-    size_t offset = 0;
-    for (int c = 0; c < spec_.nchannels; ++c) {
-      offsets_.push_back(offset);
-      offset += spec_.channelformat(c).size();
-    }
+  explicit ExrReader(const std::filesystem::path& path)
+      : path_(path),
+        in_(exrCall(path, [&] { return std::make_unique<Imf::InputFile>(path.c_str()); })) {
+    const Imath::Box2i window = in_->header().dataWindow();
+    x0_ = window.min.x;
+    y0_ = window.min.y;
+    width_ = window.max.x - window.min.x + 1;
+    height_ = window.max.y - window.min.y + 1;
+    if (width_ <= 0 || height_ <= 0) fail(path, "empty image");
   }
-  const ImageSpec& spec() const { return spec_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  const Imf::Header& header() const { return in_->header(); }
+  bool hasChannel(const std::string& name) const {
+    return in_->header().channels().findChannel(name) != nullptr;
+  }
 
-  // Finds channels by name (all before any type check: a missing channel is the likelier news)
-  // and checks their types: uint32 IDs, half or float otherwise.
-  std::vector<int> channels(const std::vector<std::string>& names, bool isUint) const {
-    std::vector<int> found;
-    for (const std::string& name : names) found.push_back(findChannel(spec_, path_, name));
-    for (size_t k = 0; k < names.size(); ++k) {
-      const TypeDesc f = spec_.channelformat(found[k]);
-      const bool ok =
-          isUint ? f == TypeDesc::UINT32 : (f == TypeDesc::HALF || f == TypeDesc::FLOAT);
+  // Adds channels to read, found by name (all before any type check: a missing channel is the
+  // likelier news) and type-checked: uint32 IDs, half or float otherwise. Returns their indices.
+  std::vector<int> channels(const std::vector<std::string>& names, bool isUint) {
+    for (const std::string& name : names)
+      if (!hasChannel(name)) fail(path_, "missing channel \"" + name + "\"");
+    std::vector<int> indices;
+    for (const std::string& name : names) {
+      const Imf::PixelType t = in_->header().channels().findChannel(name)->type;
+      const bool ok = isUint ? t == Imf::UINT : (t == Imf::HALF || t == Imf::FLOAT);
       if (!ok)
-        fail(path_, "channel \"" + names[k] + "\" has type " + f.c_str() + ", expected " +
+        fail(path_, "channel \"" + name + "\" has type " + typeName(t) + ", expected " +
                         (isUint ? "uint" : "half or float"));
+      indices.push_back(int(wanted_.size()));
+      offsets_.push_back(pixelBytes_);
+      wanted_.push_back({name, t});
+      pixelBytes_ += bytesOf(t);
     }
-    return found;
+    return indices;
   }
 
   // Calls visit(pixel index) for every pixel, block by block, with the block loaded.
   void forEachPixel(const std::function<void(size_t)>& visit) {
-    const size_t width = size_t(spec_.width);
-    for (int y0 = 0; y0 < spec_.height; y0 += kRowsPerBlock) {
-      const int y1 = std::min(y0 + kRowsPerBlock, spec_.height);
+    const size_t width = size_t(width_);
+    for (int y0 = 0; y0 < height_; y0 += kRowsPerBlock) {
+      const int y1 = std::min(y0 + kRowsPerBlock, height_);
       block_.resize(size_t(y1 - y0) * width * pixelBytes_);
-      if (!in_->read_scanlines(0, 0, y0, y1, 0, 0, spec_.nchannels, TypeDesc::UNKNOWN,
-                               block_.data()))
-        fail(path_, oiioError(in_->geterror()));
+      exrCall(path_, [&] {
+        in_->setFrameBuffer(
+            interleavedSlices(wanted_, block_.data(), x0_, y0_ + y0, width_, y1 - y0));
+        in_->readPixels(y0_ + y0, y0_ + y1 - 1);
+      });
       blockStart_ = size_t(y0) * width;
       for (size_t i = blockStart_; i < size_t(y1) * width; ++i) visit(i);
     }
   }
   float asFloat(int c, size_t i) const {
     const unsigned char* p = at(c, i);
-    if (spec_.channelformat(c) == TypeDesc::HALF) {
+    if (wanted_[size_t(c)].type == Imf::HALF) {
       Imath::half h;
       std::memcpy(&h, p, sizeof(h));
       return float(h);
@@ -214,15 +253,15 @@ class ExrReader {
     return block_.data() + (i - blockStart_) * pixelBytes_ + offsets_[size_t(c)];
   }
   std::filesystem::path path_;
-  std::unique_ptr<ImageInput> in_;
-  ImageSpec spec_;
-  size_t pixelBytes_ = 0, blockStart_ = 0;
+  std::unique_ptr<Imf::InputFile> in_;
+  int x0_ = 0, y0_ = 0, width_ = 0, height_ = 0;
+  std::vector<ExrChannel> wanted_;
   std::vector<size_t> offsets_;
+  size_t pixelBytes_ = 0, blockStart_ = 0;
   std::vector<unsigned char> block_;
 };
 
 // The header attributes of FrameOrigin (frame_io.hpp).
-const TypeDesc kVec3d(TypeDesc::DOUBLE, TypeDesc::VEC3);
 constexpr const char* kPositionAttr = "lzb.camera.position";
 constexpr const char* kLookAtAttr = "lzb.camera.look_at";
 constexpr const char* kUpAttr = "lzb.camera.up";
@@ -232,108 +271,117 @@ constexpr const char* kFarAttr = "lzb.camera.far";
 constexpr const char* kWidthAttr = "lzb.camera.width";
 constexpr const char* kHeightAttr = "lzb.camera.height";
 constexpr const char* kTrianglesAttr = "lzb.scene.triangles";
-constexpr const char* kOriginAttrs[] = {kPositionAttr, kLookAtAttr, kUpAttr,    kFovAttr,
-                                        kNearAttr,     kFarAttr,    kWidthAttr, kHeightAttr,
-                                        kTrianglesAttr};
+constexpr const char* kOriginAttrs[] = {kPositionAttr, kLookAtAttr, kUpAttr,
+                                        kFovAttr,      kNearAttr,   kFarAttr,
+                                        kWidthAttr,    kHeightAttr, kTrianglesAttr};
 
-void putVec3(ImageSpec& spec, const char* name, const glm::dvec3& v) {
-  const double xyz[3] = {v.x, v.y, v.z};
-  spec.attribute(name, kVec3d, xyz);
+Imath::V3d toV3d(const glm::dvec3& v) {
+  return {v.x, v.y, v.z};
 }
 
-void putOrigin(ImageSpec& spec, const FrameOrigin& origin) {
+void putOrigin(Imf::Header& header, const FrameOrigin& origin) {
   const CameraSpec& c = origin.camera.spec();
-  putVec3(spec, kPositionAttr, c.position);
-  putVec3(spec, kLookAtAttr, c.lookAt);
-  putVec3(spec, kUpAttr, c.up);
-  spec.attribute(kFovAttr, TypeDesc::DOUBLE, &c.fovyDegrees);
-  spec.attribute(kNearAttr, TypeDesc::DOUBLE, &c.nearPlane);
-  spec.attribute(kFarAttr, TypeDesc::DOUBLE, &c.farPlane);
-  spec.attribute(kWidthAttr, origin.camera.width());
-  spec.attribute(kHeightAttr, origin.camera.height());
+  header.insert(kPositionAttr, Imf::V3dAttribute(toV3d(c.position)));
+  header.insert(kLookAtAttr, Imf::V3dAttribute(toV3d(c.lookAt)));
+  header.insert(kUpAttr, Imf::V3dAttribute(toV3d(c.up)));
+  header.insert(kFovAttr, Imf::DoubleAttribute(c.fovyDegrees));
+  header.insert(kNearAttr, Imf::DoubleAttribute(c.nearPlane));
+  header.insert(kFarAttr, Imf::DoubleAttribute(c.farPlane));
+  header.insert(kWidthAttr, Imf::IntAttribute(origin.camera.width()));
+  header.insert(kHeightAttr, Imf::IntAttribute(origin.camera.height()));
   // A string: uint64 counts beyond 2^53 stay exact.
-  spec.attribute(kTrianglesAttr, std::to_string(origin.sceneTriangles));
+  header.insert(kTrianglesAttr, Imf::StringAttribute(std::to_string(origin.sceneTriangles)));
 }
 
 // The origin's camera must be the frame's: its size is the image's.
-void checkOrigin(const Framebuffer& fb, const FrameOrigin* origin, const std::filesystem::path& path) {
+void checkOrigin(const Framebuffer& fb, const FrameOrigin* origin,
+                 const std::filesystem::path& path) {
   require(!origin || (origin->camera.width() == fb.width && origin->camera.height() == fb.height),
           path.string(), "the camera's size differs from the frame's");
 }
 
-// The attribute `name` of `type` (semantics aside: OpenEXR reads a v3d back as a vector).
-const OIIO::ParamValue& attributeOf(const ImageSpec& spec, const std::filesystem::path& path,
-                                    const char* name, TypeDesc type) {
-  const OIIO::ParamValue* p = spec.find_attribute(name);
-  if (!p) fail(path, "missing header attribute \"" + std::string(name) + "\"");
-  const TypeDesc t = p->type();
-  if (t.basetype != type.basetype || t.aggregate != type.aggregate || t.arraylen != type.arraylen)
-    fail(path, "header attribute \"" + std::string(name) + "\" has type " + t.c_str() +
-                   ", expected " + type.c_str());
-  return *p;
+// The value of header attribute `name` of OpenEXR type A.
+template <typename A>
+const auto& attributeOf(const Imf::Header& header, const std::filesystem::path& path,
+                        const char* name) {
+  const Imf::Header::ConstIterator found = header.find(name);
+  if (found == header.end()) fail(path, "missing header attribute \"" + std::string(name) + "\"");
+  const A* typed = dynamic_cast<const A*>(&found.attribute());
+  if (!typed)
+    fail(path, "header attribute \"" + std::string(name) + "\" has type " +
+                   found.attribute().typeName() + ", expected " + A::staticTypeName());
+  return typed->value();
 }
 
-glm::dvec3 getVec3(const ImageSpec& spec, const std::filesystem::path& path, const char* name) {
-  const double* xyz = static_cast<const double*>(attributeOf(spec, path, name, kVec3d).data());
-  return {xyz[0], xyz[1], xyz[2]};
+glm::dvec3 getVec3(const Imf::Header& header, const std::filesystem::path& path, const char* name) {
+  const Imath::V3d& v = attributeOf<Imf::V3dAttribute>(header, path, name);
+  return {v.x, v.y, v.z};
 }
 
-double getDouble(const ImageSpec& spec, const std::filesystem::path& path, const char* name) {
-  return *static_cast<const double*>(attributeOf(spec, path, name, TypeDesc::DOUBLE).data());
-}
-
-int getInt(const ImageSpec& spec, const std::filesystem::path& path, const char* name) {
-  return *static_cast<const int*>(attributeOf(spec, path, name, TypeDesc::INT).data());
-}
-
-uint64_t getCount(const ImageSpec& spec, const std::filesystem::path& path, const char* name) {
-  const OIIO::ParamValue& p = attributeOf(spec, path, name, TypeDesc::STRING);
-  const std::string text = p.get_string();
+uint64_t getCount(const Imf::Header& header, const std::filesystem::path& path, const char* name) {
+  const std::string& text = attributeOf<Imf::StringAttribute>(header, path, name);
   const bool digits = !text.empty() && text.size() <= 20 &&
                       text.find_first_not_of("0123456789") == std::string::npos;
   if (!digits) fail(path, "header attribute \"" + std::string(name) + "\" is not a count: " + text);
   return std::stoull(text);
 }
 
-FrameOrigin originOf(const ImageSpec& spec, const std::filesystem::path& path) {
+FrameOrigin originOf(const ExrReader& in, const std::filesystem::path& path) {
+  const Imf::Header& h = in.header();
   CameraSpec c;
-  c.position = getVec3(spec, path, kPositionAttr);
-  c.lookAt = getVec3(spec, path, kLookAtAttr);
-  c.up = getVec3(spec, path, kUpAttr);
-  c.fovyDegrees = getDouble(spec, path, kFovAttr);
-  c.nearPlane = getDouble(spec, path, kNearAttr);
-  c.farPlane = getDouble(spec, path, kFarAttr);
-  const int width = getInt(spec, path, kWidthAttr), height = getInt(spec, path, kHeightAttr);
-  if (width != spec.width || height != spec.height)
+  c.position = getVec3(h, path, kPositionAttr);
+  c.lookAt = getVec3(h, path, kLookAtAttr);
+  c.up = getVec3(h, path, kUpAttr);
+  c.fovyDegrees = attributeOf<Imf::DoubleAttribute>(h, path, kFovAttr);
+  c.nearPlane = attributeOf<Imf::DoubleAttribute>(h, path, kNearAttr);
+  c.farPlane = attributeOf<Imf::DoubleAttribute>(h, path, kFarAttr);
+  const int width = attributeOf<Imf::IntAttribute>(h, path, kWidthAttr);
+  const int height = attributeOf<Imf::IntAttribute>(h, path, kHeightAttr);
+  if (width != in.width() || height != in.height())
     fail(path, "header camera is " + std::to_string(width) + "x" + std::to_string(height) +
-                   ", the image " + std::to_string(spec.width) + "x" + std::to_string(spec.height));
+                   ", the image " + std::to_string(in.width()) + "x" + std::to_string(in.height()));
   return {Camera(c, width, height, path.string() + ": header camera"),
-          getCount(spec, path, kTrianglesAttr)};
+          getCount(h, path, kTrianglesAttr)};
 }
 
 void writeExrChannels(const Framebuffer& fb, const ReferenceFrame* sub, const FrameOrigin* origin,
                       const std::filesystem::path& path) {
   const std::vector<ExrChannel> channels = frameChannels(sub != nullptr);
-  ImageSpec spec(fb.width, fb.height, int(channels.size()), TypeDesc::HALF);
-  spec.channelnames.clear();
-  spec.channelformats.clear();
-  for (const ExrChannel& c : channels) {
-    spec.channelnames.push_back(c.name);
-    spec.channelformats.push_back(c.type);
-  }
-  spec.alpha_channel = 3;
-  spec.z_channel = 4;
-  spec.attribute("compression", "zip");
-  // No capture date: identical frames must give identical files (the 2-rank test compares bytes).
-  spec.attribute("DateTime", "");
-  if (origin) putOrigin(spec, *origin);
+  Imf::Header header(fb.width, fb.height);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  for (const ExrChannel& c : channels) header.channels().insert(c.name, Imf::Channel(c.type));
+  if (origin) putOrigin(header, *origin);
   const auto fill = [&](int y0, int y1, std::vector<unsigned char>& block) {
     RowPacker row(block);
     for (size_t i = fb.index(0, y0); i < fb.index(0, y1); ++i) packPixel(fb, sub, i, row);
   };
   writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
-    writeImage(path, tmp, spec, fill);
+    writeExrImage(path, tmp, header, channels, fill);
   });
+}
+
+// fb's colour as R, G, B, A bytes per pixel: the framebuffer's own memory where Rgba8's byte
+// order is that (color.hpp packs R in the low byte), a copy otherwise.
+const unsigned char* rgbaBytes(const Framebuffer& fb, std::vector<unsigned char>& copy) {
+  if constexpr (std::endian::native == std::endian::little)
+    return reinterpret_cast<const unsigned char*>(fb.color.data());
+  copy.clear();
+  for (Rgba8 c : fb.color)
+    for (int k = 0; k < 4; ++k) copy.push_back(channel(c, k));
+  return copy.data();
+}
+
+// An 8-bit RGBA PNG, straight alpha (libpng's 8-bit formats are not premultiplied).
+void writePngImage(const Framebuffer& fb, const std::filesystem::path& path,
+                   const std::filesystem::path& tmp) {
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = png_uint_32(fb.width);
+  image.height = png_uint_32(fb.height);
+  image.format = PNG_FORMAT_RGBA;
+  std::vector<unsigned char> copy;
+  if (!png_image_write_to_file(&image, tmp.c_str(), 0, rgbaBytes(fb, copy), 0, nullptr))
+    fail(path, image.message);
 }
 
 }  // namespace
@@ -366,18 +414,8 @@ void writeExr(const Framebuffer& fb, const ReferenceFrame& subsamples,
 }
 
 void writePng(const Framebuffer& fb, const std::filesystem::path& path) {
-  ImageSpec spec(fb.width, fb.height, 4, TypeDesc::UINT8);
-  spec.alpha_channel = 3;
-  // Our colour is not premultiplied: keep OIIO from dividing it by alpha on the way out.
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  const auto fill = [&](int y0, int y1, std::vector<unsigned char>& block) {
-    block.clear();
-    for (size_t i = fb.index(0, y0); i < fb.index(0, y1); ++i)
-      for (int k = 0; k < 4; ++k) block.push_back(channel(fb.color[i], k));
-  };
-  writeFileAtomically(path, [&](const std::filesystem::path& tmp) {
-    writeImage(path, tmp, spec, fill);
-  });
+  writeFileAtomically(path,
+                      [&](const std::filesystem::path& tmp) { writePngImage(fb, path, tmp); });
 }
 
 void writeFrame(const Framebuffer& fb, const std::filesystem::path& dir, int frame,
@@ -398,12 +436,11 @@ Framebuffer readFrameExr(const std::filesystem::path& path) {
   const std::vector<int> colour = in.channels({"R", "G", "B", "A", "Z"}, false);
   const std::vector<int> id = in.channels({kIdLowChannel, kIdHighChannel}, true);
 
-  Framebuffer fb(in.spec().width, in.spec().height);
+  Framebuffer fb(in.width(), in.height());
   in.forEachPixel([&](size_t i) {
-    fb.color[i] = packRgba8(unitToByteExact(in.asFloat(colour[0], i)),
-                            unitToByteExact(in.asFloat(colour[1], i)),
-                            unitToByteExact(in.asFloat(colour[2], i)),
-                            unitToByteExact(in.asFloat(colour[3], i)));
+    fb.color[i] = packRgba8(
+        unitToByteExact(in.asFloat(colour[0], i)), unitToByteExact(in.asFloat(colour[1], i)),
+        unitToByteExact(in.asFloat(colour[2], i)), unitToByteExact(in.asFloat(colour[3], i)));
     fb.depth[i] = in.asFloat(colour[4], i);
     fb.id[i] = in.asId(id[0], id[1], i);
   });
@@ -412,7 +449,7 @@ Framebuffer readFrameExr(const std::filesystem::path& path) {
 
 ReferenceFrame readReferenceExr(const std::filesystem::path& path) {
   ExrReader in(path);
-  if (channelIndex(in.spec(), subsampleIdLowChannel(0)) < 0)
+  if (!in.hasChannel(subsampleIdLowChannel(0)))
     fail(path, "has no sub-sample channels (\"" + subsampleIdLowChannel(0) +
                    "\" ...): render the reference with `lzb render --subsamples`");
   std::vector<std::string> idNames = {kIdLowChannel, kIdHighChannel};
@@ -424,7 +461,7 @@ ReferenceFrame readReferenceExr(const std::filesystem::path& path) {
   const std::vector<int> box =
       in.channels({kBoxColorChannels[0], kBoxColorChannels[1], kBoxColorChannels[2]}, false);
 
-  ReferenceFrame ref(in.spec().width, in.spec().height);
+  ReferenceFrame ref(in.width(), in.height());
   in.forEachPixel([&](size_t i) {
     ref.centreId[i] = in.asId(id[0], id[1], i);
     for (size_t k = 0; k < size_t(kSubsamples); ++k)
@@ -436,9 +473,8 @@ ReferenceFrame readReferenceExr(const std::filesystem::path& path) {
 
 std::optional<FrameOrigin> readFrameOrigin(const std::filesystem::path& path) {
   const ExrReader in(path);
-  const ImageSpec& spec = in.spec();
   for (const char* name : kOriginAttrs)
-    if (spec.find_attribute(name)) return originOf(spec, path);
+    if (in.header().find(name) != in.header().end()) return originOf(in, path);
   return std::nullopt;
 }
 
