@@ -1,6 +1,8 @@
 #include "mpi/decomposition.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "src/core/error.hpp"
 
@@ -58,6 +60,73 @@ std::vector<uint32_t> dealByCost(std::span<const double> costs, const WorkShare&
     before += costs[i];
   }
   return mine;
+}
+
+namespace {
+
+// Splits the units order[begin, end) into regions [first, first + count).
+void splitRange(std::span<const glm::dvec3> centres, std::span<const uint64_t> triangles,
+                std::vector<uint32_t>& order, size_t begin, size_t end, uint32_t first,
+                uint32_t count, std::vector<uint32_t>& regionOf) {
+  if (count == 1 || end - begin <= 1) {
+    for (size_t i = begin; i < end; ++i) regionOf[order[i]] = first;
+    return;
+  }
+  glm::dvec3 boxLo(std::numeric_limits<double>::max());
+  glm::dvec3 boxHi(std::numeric_limits<double>::lowest());
+  for (size_t i = begin; i < end; ++i) {
+    boxLo = glm::min(boxLo, centres[order[i]]);
+    boxHi = glm::max(boxHi, centres[order[i]]);
+  }
+  const glm::dvec3 extent = boxHi - boxLo;
+  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+  const auto before = [&](uint32_t a, uint32_t b) {
+    const double ca = centres[a][axis], cb = centres[b][axis];
+    return ca < cb || (ca == cb && a < b);
+  };
+  const auto at = [&](size_t i) { return order.begin() + ptrdiff_t(i); };
+  uint64_t total = 0;
+  for (size_t i = begin; i < end; ++i) total += triangles[order[i]];
+  const uint32_t left = count / 2;
+  // The cut: the first unit whose triangles, with those before it, pass the left regions'
+  // share. Found by halving [lo, hi) with selections (O(n) in all), never a full sort.
+  const long double target = (long double)total * left / count;
+  long double costBefore = 0.0L;  // of order[begin, lo)
+  size_t lo = begin, hi = end;
+  while (hi - lo > 1) {
+    const size_t mid = lo + (hi - lo) / 2;
+    std::nth_element(at(lo), at(mid), at(hi), before);
+    long double c = 0.0L;
+    for (size_t i = lo; i < mid; ++i) c += triangles[order[i]];
+    if (costBefore + c + 0.5L * triangles[order[mid]] < target) {
+      costBefore += c + triangles[order[mid]];
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
+  }
+  if (hi - lo == 1 && costBefore + 0.5L * triangles[order[lo]] < target) ++lo;
+  const size_t cut = std::clamp(lo, begin + 1, end - 1);
+  // order[begin, cut) must be the cut's smallest units, whatever the halving left in place.
+  std::nth_element(at(begin), at(cut), at(end), before);
+  splitRange(centres, triangles, order, begin, cut, first, left, regionOf);
+  splitRange(centres, triangles, order, cut, end, first + left, count - left, regionOf);
+}
+
+}  // namespace
+
+std::vector<uint32_t> splitIntoRegions(std::span<const glm::dvec3> centres,
+                                       std::span<const uint64_t> triangles, uint32_t regions) {
+  std::vector<uint32_t> order(centres.size()), regionOf(centres.size(), 0);
+  for (uint32_t u = 0; u < order.size(); ++u) order[u] = u;
+  if (regions > 0) splitRange(centres, triangles, order, 0, order.size(), 0, regions, regionOf);
+  return regionOf;
+}
+
+std::vector<uint32_t> regionsOfRank(std::span<const uint64_t> regionTriangles,
+                                    const WorkShare& share) {
+  const std::vector<double> costs(regionTriangles.begin(), regionTriangles.end());
+  return dealByCost(costs, share);
 }
 
 }  // namespace lzb

@@ -9,11 +9,16 @@
 //    which every rank knows alike).
 //  - Items by cost (octree boxes of the point pass): contiguous runs of about equal estimated
 //    cost, in the items' own order.
+//  - Regions (--distribute data): the scene cut into spatial boxes balanced by triangle count, a
+//    k-d split that depends on the scene and the region count alone; ranks hold contiguous runs
+//    of regions of about equal triangle count.
 #include <algorithm>
 #include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include "src/core/renderer.hpp"
 
@@ -76,5 +81,21 @@ class ScreenTiles {
 // total cost holds the midpoint of i's cost interval, so every rank gets a contiguous run of
 // about equal cost (all items to rank 0 when the total is 0).
 std::vector<uint32_t> dealByCost(std::span<const double> costs, const WorkShare& share);
+
+// ---- Regions
+
+// Cuts units (pieces of the scene that go whole to one region, at world position centres[u],
+// costing triangles[u]) into `regions` regions: a k-d split that halves the region count at each
+// step along the widest axis of its units' centres, at the point where the triangles before it
+// match the regions before it. Ties break by unit index, so the result depends on the units and
+// `regions` alone. Returns each unit's region in [0, regions); a region may stay empty when there
+// are fewer units than regions.
+std::vector<uint32_t> splitIntoRegions(std::span<const glm::dvec3> centres,
+                                       std::span<const uint64_t> triangles, uint32_t regions);
+
+// The regions rank share.rank holds, given each region's triangles: a contiguous run of about
+// equal triangle count (dealByCost), so a rank's regions are neighbours in the k-d order.
+std::vector<uint32_t> regionsOfRank(std::span<const uint64_t> regionTriangles,
+                                    const WorkShare& share);
 
 }  // namespace lzb

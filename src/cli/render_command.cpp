@@ -7,6 +7,7 @@
 #include "mpi/composite.hpp"
 #include "mpi/failure.hpp"
 #include "mpi/frame_driver.hpp"
+#include "src/cli/distribute.hpp"
 #include "src/cli/frame_transfer.hpp"
 #include "src/cli/judge.hpp"
 #include "src/cli/methods.hpp"
@@ -51,6 +52,16 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
   c.add_option("--frame-groups", a.frameGroups,
                "frame-parallel batches: the ranks form this many groups, frame f goes to group f "
                "mod G, each group splits its frame; the first rank writes every frame")
+      ->capture_default_str();
+  c.add_option("--distribute", a.distribute,
+               "replicate: every rank holds the whole scene | data: the scene is cut into "
+               "--regions spatial regions balanced by triangle count, each rank (of each frame "
+               "group) holds only its regions' triangles and renders the whole frame of them, "
+               "and the frames are composited by depth (zbuffer and raycast so far)")
+      ->capture_default_str();
+  c.add_option("--regions", a.regions,
+               "--distribute data: regions the scene is cut into, the same on any number of "
+               "ranks (0: one per 65,536 unique triangles, 16 to 4096)")
       ->capture_default_str();
   c.add_option("--threads,-t", a.threads, "threads per rank (0: the cores this rank owns)")
       ->capture_default_str();
@@ -148,6 +159,19 @@ void renderFrames(const RenderArgs& a, const mpi::Group& world, const mpi::SubGr
   progress.done();
 }
 
+// --distribute data: this rank's regions cut from the loaded scene, which the plan then gives up
+// for its outline (camera paths and clip planes come out alike), and the renderer of the part.
+std::unique_ptr<Renderer> createPartRenderer(const RenderArgs& a, const mpi::Group& group,
+                                             RenderPlan& plan, HeldShare& held) {
+  const uint32_t regions = a.regions ? a.regions : defaultRegions(plan.scene);
+  held = holdShare(plan.scene, regions, WorkShare{group.rank, group.size});
+  plan.scene = sceneFromOutline(plan.outline);
+  std::unique_ptr<Renderer> inner;
+  if (held.part->scene.expandedTriangles() > 0)
+    inner = methodNamed(a.method, "--method").create(held.part->scene, plan.options);
+  return makePartRenderer(held, std::move(inner), a.method);
+}
+
 }  // namespace
 
 int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& commandLine) {
@@ -156,6 +180,7 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
   // Everything one rank can get wrong alone (options, files, memory) is agreed on before any
   // rank writes anything or meets the others in a frame (mpi/failure.hpp).
   RenderPlan plan;
+  HeldShare held;  // --distribute data: outlives the renderer, which renders it
   std::unique_ptr<Renderer> renderer;
   Judge judge;
   double setupSeconds = 0.0;
@@ -169,7 +194,10 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
   mpi::agree(g, [&] {
     loadPlan(a, talk, plan);
     Stopwatch setupClock;
-    renderer = methodNamed(a.method, "--method").create(plan.scene, plan.options);
+    if (parseDistribution(a.distribute, "--distribute") == Distribution::kData)
+      renderer = createPartRenderer(a, groups.group(), plan, held);
+    else
+      renderer = methodNamed(a.method, "--method").create(plan.scene, plan.options);
     if (!a.reference.empty()) judge = makeJudge(a.reference, plan.scene, plan.options, groups.group().root());
     setupSeconds = setupClock.seconds();
   });

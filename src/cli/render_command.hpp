@@ -20,6 +20,8 @@ struct RenderArgs {
   std::string out = "out";
   std::string composite = "tiles";  // mpi/composite.hpp; the fastest in runs/composite
   int frameGroups = 1;                // frame-parallel batches
+  std::string distribute = "replicate";  // src/cli/distribute.hpp: replicate | data
+  uint32_t regions = 0;                  // --distribute data: 0 = from the scene's size
   int threads = 0;  // 0: the cores this rank owns
   uint64_t seed = 1;
   int width = 0, height = 0;  // 0: the scene file's, else 640x480

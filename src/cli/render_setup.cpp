@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "mpi/composite.hpp"
+#include "src/cli/distribute.hpp"
 #include "src/cli/methods.hpp"
 #include "src/core/error.hpp"
 #include "src/core/system.hpp"
@@ -66,6 +67,13 @@ void validateRenderArgs(const RenderArgs& a) {
   require(a.threads >= 0 && a.threads <= 1024, "--threads", "must be in [0, 1024]");
   require(a.frames >= 1 && a.frames <= 1000000, "--frames", "must be in [1, 1000000]");
   mpi::parseCompositeStrategy(a.composite, "--composite");
+  if (parseDistribution(a.distribute, "--distribute") == Distribution::kData) {
+    require(rendersParts(a.method), "--distribute data",
+            "renders with --method zbuffer or raycast so far, not " + a.method);
+    require(a.reference.empty() && !a.subsamples, "--distribute data",
+            "cannot take --reference or --subsamples yet (they need the whole scene)");
+  }
+  require(a.regions <= 65536, "--regions", "must be in [0, 65536]");
   require(a.fov >= 0.0 && a.fov < 180.0, "--fov", "must be in (0, 180) degrees");
   require(a.nearPlane >= 0.0, "--near", "must be > 0");
   require(a.farPlane >= 0.0, "--far", "must be > 0");

@@ -42,6 +42,7 @@ Report::Report(const RenderArgs& a, const RenderOptions& options, const mpi::Gro
              {"frames", a.frames},
              {"composite", a.composite},
              {"frame_groups", a.frameGroups},
+             {"distribute", a.distribute},
              {"reference", a.reference.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.reference)},
              {"subsamples", a.subsamples},
              {"fov", a.fov},

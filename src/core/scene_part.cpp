@@ -1,0 +1,226 @@
+#include "src/core/scene_part.hpp"
+
+#include <algorithm>
+#include <map>
+#include <queue>
+#include <stdexcept>
+
+namespace lzb {
+
+void IdMap::add(uint64_t global, uint64_t count) {
+  if (count == 0) return;
+  if (!runs_.empty() && runs_.back().global + runs_.back().count == global)
+    runs_.back().count += count;
+  else
+    runs_.push_back({size_, global, count});
+  size_ += count;
+}
+
+uint64_t IdMap::global(uint64_t local) const {
+  if (local >= size_) return kNoId;
+  const auto after = std::upper_bound(runs_.begin(), runs_.end(), local,
+                                      [](uint64_t id, const Run& r) { return id < r.local; });
+  const Run& run = *(after - 1);
+  return run.global + (local - run.local);
+}
+
+namespace {
+
+// Instances opened at most: each adds a few units.
+constexpr size_t kMaxOpened = size_t(1) << 20;
+
+glm::dvec3 meshCentre(const Mesh& mesh, const glm::dmat4& toWorld) {
+  Bounds b;
+  for (const glm::vec3& p : mesh.positions) b.extend(glm::dvec3(p));
+  return b.empty() ? glm::dvec3(toWorld[3]) : b.transformed(toWorld).center();
+}
+
+glm::dvec3 centroid(const Mesh& mesh, size_t t) {
+  return (glm::dvec3(mesh.vertex(t, 0)) + glm::dvec3(mesh.vertex(t, 1)) +
+          glm::dvec3(mesh.vertex(t, 2))) /
+         3.0;
+}
+
+// A unit with the world transform of the node it names (to open it).
+struct Candidate {
+  SceneUnit unit;
+  uint32_t node;
+  glm::dmat4 toWorld;
+};
+
+// The units node `node` (reached by `path`, placed by `toWorld`, its IDs from `idBase`) opens
+// into: its own mesh, then each instance whole.
+void openNode(const Scene& scene, uint32_t node, const std::vector<uint32_t>& path,
+              const glm::dmat4& toWorld, uint64_t idBase, std::vector<Candidate>& out) {
+  const Node& n = scene.nodes[node];
+  if (!n.mesh.empty())
+    out.push_back(
+        {{path, false, idBase, n.mesh.size(), meshCentre(n.mesh, toWorld)}, node, toWorld});
+  for (size_t i = 0; i < n.instances.size(); ++i) {
+    const Instance& inst = n.instances[i];
+    if (scene.expandedCount[inst.node] == 0) continue;
+    std::vector<uint32_t> p = path;
+    p.push_back(uint32_t(i));
+    const glm::dmat4 w = toWorld * inst.transform;
+    out.push_back(
+        {{std::move(p), true, idBase + scene.childOffset(node, i), scene.expandedCount[inst.node],
+          scene.nodeBounds[inst.node].transformed(w).center()},
+         inst.node,
+         w});
+  }
+}
+
+// Larger first; among equals the earlier in ID order.
+struct Larger {
+  bool operator()(const Candidate& a, const Candidate& b) const {
+    if (a.unit.triangles != b.unit.triangles) return a.unit.triangles < b.unit.triangles;
+    return a.unit.idBase > b.unit.idBase;
+  }
+};
+
+// A node of the part standing for the whole scene's node `original` at an opened path.
+struct PartBuilder {
+  const Scene& whole;
+  ScenePart& part;
+  std::map<std::vector<uint32_t>, uint32_t> opened;           // path -> part node
+  std::vector<std::pair<uint32_t, uint32_t>> openedOriginal;  // (part node, whole node)
+  std::vector<bool> copied;
+
+  // The part node at `path` (the root for the empty path), made with its parents when new.
+  uint32_t nodeAt(const std::vector<uint32_t>& path) {
+    if (path.empty()) return whole.root;
+    const auto found = opened.find(path);
+    if (found != opened.end()) return found->second;
+    const std::vector<uint32_t> parentPath(path.begin(), path.end() - 1);
+    const uint32_t parent = nodeAt(parentPath);
+    const Instance& inst = wholeNodeAt(parentPath).instances[path.back()];
+    const uint32_t made = part.scene.addNode(whole.nodes[inst.node].name);
+    part.scene.nodes[parent].instances.push_back({made, inst.transform});
+    opened.emplace(path, made);
+    openedOriginal.emplace_back(made, inst.node);
+    return made;
+  }
+  const Node& wholeNodeAt(const std::vector<uint32_t>& path) const {
+    uint32_t n = whole.root;
+    for (uint32_t i : path) n = whole.nodes[n].instances[i].node;
+    return whole.nodes[n];
+  }
+  void copySubtree(uint32_t i) {
+    std::vector<uint32_t> stack{i};
+    while (!stack.empty()) {
+      const uint32_t n = stack.back();
+      stack.pop_back();
+      if (copied[n]) continue;
+      copied[n] = true;
+      part.scene.nodes[n] = whole.nodes[n];
+      for (const Instance& inst : whole.nodes[n].instances) stack.push_back(inst.node);
+    }
+  }
+  void add(const SceneUnit& u) {
+    if (u.subtree) {
+      const std::vector<uint32_t> parentPath(u.path.begin(), u.path.end() - 1);
+      const uint32_t parent = nodeAt(parentPath);
+      const Instance& inst = wholeNodeAt(parentPath).instances[u.path.back()];
+      part.scene.nodes[parent].instances.push_back(inst);
+      copySubtree(inst.node);
+    } else {
+      Node& to = part.scene.nodes[nodeAt(u.path)];
+      const Node& from = wholeNodeAt(u.path);
+      to.mesh = from.mesh;
+      to.procedural = from.procedural;
+    }
+    part.ids.add(u.idBase, u.triangles);
+    ++part.units;
+  }
+};
+
+// The root triangles t < count with keep[t], into the part's root (its first units).
+void cutRootTriangles(const Mesh& from, uint64_t count, const std::vector<bool>& keep,
+                      ScenePart& part) {
+  uint64_t kept = 0;
+  for (uint64_t t = 0; t < count; ++t) kept += keep[t];
+  Mesh& to = part.scene.nodes[part.scene.root].mesh;
+  to.positions.reserve(3 * kept);
+  to.normals.reserve(kept);
+  to.colors.reserve(kept);
+  for (uint64_t t = 0; t < count; ++t) {
+    if (!keep[t]) continue;
+    to.positions.insert(to.positions.end(), from.positions.begin() + ptrdiff_t(3 * t),
+                        from.positions.begin() + ptrdiff_t(3 * t + 3));
+    to.normals.push_back(from.normals[t]);
+    to.colors.push_back(from.colors[t]);
+    part.ids.add(t, 1);
+  }
+  part.units += kept;
+}
+
+}  // namespace
+
+glm::dvec3 SceneUnits::centre(const Scene& scene, size_t u) const {
+  return u < rootTriangles ? centroid(scene.rootNode().mesh, u) : opened[u - rootTriangles].centre;
+}
+
+SceneUnits sceneUnits(const Scene& scene, uint32_t regions) {
+  const Node& root = scene.rootNode();
+  SceneUnits units;
+  std::vector<Candidate> open;
+  openNode(scene, scene.root, {}, glm::dmat4(1.0), 0, open);
+  if (!root.procedural && !root.mesh.empty()) {
+    units.rootTriangles = root.mesh.size();
+    open.erase(open.begin());  // the root's mesh: its triangles, one unit each
+  }
+  const uint64_t limit = std::max<uint64_t>(1, scene.expandedTriangles() / (8 * uint64_t(regions)));
+  std::priority_queue<Candidate, std::vector<Candidate>, Larger> queue(Larger{}, std::move(open));
+  size_t opened = 0;
+  while (!queue.empty()) {
+    Candidate c = queue.top();
+    queue.pop();
+    const bool openable =
+        c.unit.subtree && !scene.nodes[c.node].instances.empty() && opened < kMaxOpened;
+    if (c.unit.triangles <= limit || !openable) {
+      units.opened.push_back(std::move(c.unit));
+      continue;
+    }
+    ++opened;
+    std::vector<Candidate> children;
+    openNode(scene, c.node, c.unit.path, c.toWorld, c.unit.idBase, children);
+    for (Candidate& child : children) queue.push(std::move(child));
+  }
+  std::sort(units.opened.begin(), units.opened.end(),
+            [](const SceneUnit& a, const SceneUnit& b) { return a.idBase < b.idBase; });
+  return units;
+}
+
+ScenePart cutScene(const Scene& whole, const SceneUnits& units, const std::vector<bool>& keep) {
+  if (keep.size() != units.size())
+    throw std::invalid_argument("cutScene: keep has " + std::to_string(keep.size()) +
+                                " entries for " + std::to_string(units.size()) + " units");
+  ScenePart part;
+  Scene& s = part.scene;
+  s.source = whole.source;
+  s.light = whole.light;
+  s.camera = whole.camera;
+  s.keyframes = whole.keyframes;
+  s.width = whole.width;
+  s.height = whole.height;
+  s.stats = whole.stats;
+  s.root = whole.root;
+  s.nodes.resize(whole.nodes.size());
+  for (size_t n = 0; n < whole.nodes.size(); ++n) s.nodes[n].name = whole.nodes[n].name;
+  PartBuilder build{whole, part, {}, {}, std::vector<bool>(whole.nodes.size(), false)};
+  build.copied[whole.root] = true;  // the root is cut, never copied (no instance reaches it)
+  cutRootTriangles(whole.rootNode().mesh, units.rootTriangles, keep, part);
+  for (size_t u = 0; u < units.opened.size(); ++u)
+    if (keep[units.rootTriangles + u]) build.add(units.opened[u]);
+  s.finalize();
+  // Opened nodes and the root keep the whole scene's boxes (supersets of theirs): what is placed
+  // relative to a node's box (Embree's recentred positions) then comes out bit for bit alike.
+  if (s.expandedTriangles() > 0) {
+    s.nodeBounds[s.root] = whole.nodeBounds[whole.root];
+    for (const auto& [made, original] : build.openedOriginal)
+      s.nodeBounds[made] = whole.nodeBounds[original];
+  }
+  return part;
+}
+
+}  // namespace lzb

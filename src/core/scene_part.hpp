@@ -1,0 +1,73 @@
+#pragma once
+// A rank's part of a scene under --distribute data: the pieces of the whole scene it holds and
+// the map from the part's triangle IDs back to the whole scene's, so that an ID names the same
+// triangle on any number of ranks.
+//
+// The pieces ("units") are the root's own triangles, each alone, and whole instances with their
+// subtrees; an instance too large for the region count is opened into its node's own mesh (one
+// unit) and its node's instances, the largest first. A procedural object's mesh stays one unit
+// (its layout maps a parameter point to a triangle). A part keeps the whole scene's instance
+// chains, transforms and node boxes, and its units in the whole scene's order, so exact methods
+// compute every hit bit for bit as on the whole scene, and IDs rise with the whole scene's.
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "src/core/scene.hpp"
+
+namespace lzb {
+
+// Expanded IDs of a part, mapped to the whole scene's in runs of consecutive IDs.
+class IdMap {
+ public:
+  // Appends `count` IDs that are the whole scene's [global, global + count).
+  void add(uint64_t global, uint64_t count);
+  // The whole scene's ID of the part's ID `local` (kNoId stays kNoId).
+  uint64_t global(uint64_t local) const;
+  uint64_t size() const { return size_; }
+
+ private:
+  struct Run {
+    uint64_t local, global, count;
+  };
+  std::vector<Run> runs_;
+  uint64_t size_ = 0;
+};
+
+// One unit beyond the root's own triangles: the instance chain from the root (instance indices,
+// node by node) to the node it names, and whether it is that instance's whole subtree or the
+// node's own mesh.
+struct SceneUnit {
+  std::vector<uint32_t> path;
+  bool subtree = true;
+  uint64_t idBase = 0;     // the whole scene's ID of its first triangle
+  uint64_t triangles = 0;  // expanded
+  glm::dvec3 centre{0.0};  // world position: the triangle's centroid, else its box's centre
+};
+
+// The units of `scene` for `regions` regions, in expanded-ID order: the root's own triangles (one
+// unit each, kept implicit: a scene of 10^8 triangles needs no 10^8 unit records), then the
+// rest. Instances holding more than 1/8 of a region's share are opened while any is (and can
+// be), at most 2^20 of them.
+struct SceneUnits {
+  uint64_t rootTriangles = 0;     // units [0, rootTriangles): root triangle u
+  std::vector<SceneUnit> opened;  // the units after them
+  size_t size() const { return rootTriangles + opened.size(); }
+  // Unit u's world centre and expanded triangles.
+  glm::dvec3 centre(const Scene& scene, size_t u) const;
+  uint64_t triangles(size_t u) const {
+    return u < rootTriangles ? 1 : opened[u - rootTriangles].triangles;
+  }
+};
+SceneUnits sceneUnits(const Scene& scene, uint32_t regions);
+
+struct ScenePart {
+  Scene scene;         // the units kept; nodes opened for some units are new nodes; finalized
+  IdMap ids;           // the part's expanded IDs -> the whole scene's
+  uint64_t units = 0;  // units kept
+};
+
+// The part of `whole` made of the units u with keep[u] (units from sceneUnits(whole, ...)).
+ScenePart cutScene(const Scene& whole, const SceneUnits& units, const std::vector<bool>& keep);
+
+}  // namespace lzb
