@@ -186,6 +186,17 @@ EmbreeScene::EmbreeScene(const Scene& scene, const EmbreeSceneOptions& options)
 
 EmbreeScene::~EmbreeScene() = default;
 
+Bounds EmbreeScene::heldBounds() const {
+  RTCBounds b;
+  rtcGetSceneBounds(impl_->root->scene, &b);
+  Bounds out;
+  if (b.lower_x > b.upper_x) return out;
+  const glm::dvec3 s = impl_->shift[impl_->scene.root];
+  out.extend(glm::dvec3(b.lower_x, b.lower_y, b.lower_z) + s);
+  out.extend(glm::dvec3(b.upper_x, b.upper_y, b.upper_z) + s);
+  return out;
+}
+
 const EmbreeBuildStats& EmbreeScene::buildStats() const {
   return impl_->stats;
 }

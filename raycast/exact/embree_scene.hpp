@@ -64,6 +64,9 @@ class EmbreeScene {
   // Thread-safe.
   void intersect(std::span<const Ray> rays, std::span<RayHit> hits) const;
   int packetWidth() const;  // 16, 8, 4 (what the CPU runs natively) or 1
+  // The world box of what the scene holds (Embree's bounds of the root level, not the node box,
+  // which a scene part keeps at the whole scene's); empty when it holds nothing.
+  Bounds heldBounds() const;
 
   const EmbreeBuildStats& buildStats() const;
 

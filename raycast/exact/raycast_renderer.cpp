@@ -1,6 +1,8 @@
 #include "raycast/exact/raycast_renderer.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 #include "mpi/decomposition.hpp"
@@ -58,7 +60,8 @@ RaycastRenderer::RaycastRenderer(const Scene& scene, const RenderOptions& option
     : scene_(scene),
       options_(options),
       tuning_(tuning),
-      embree_(scene, withThreads(tuning.embree, options.threads)) {}
+      embree_(scene, withThreads(tuning.embree, options.threads)),
+      held_(embree_.heldBounds()) {}
 
 FrameStats RaycastRenderer::setupStats() const {
   const EmbreeBuildStats& b = embree_.buildStats();
@@ -77,12 +80,43 @@ std::string RaycastRenderer::decomposition() const {
          "rays of its tiles against the whole scene";
 }
 
+namespace {
+
+// The pixels whose centre rays can meet `box`: the rectangle of its corners' projections, a pixel
+// wider on each side for rounding; the whole frame when a corner is not in front of the camera;
+// none when the box is empty.
+TileRect pixelsUnder(const Bounds& box, const Camera& camera, int width, int height) {
+  if (box.empty()) return {0, 0, 0, 0};
+  glm::dvec2 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+  for (int k = 0; k < 8; ++k) {
+    const glm::dvec3 p = camera.project(box.corner(k));
+    if (!(p.z > 0.0)) return {0, 0, width, height};
+    lo = glm::min(lo, glm::dvec2(p));
+    hi = glm::max(hi, glm::dvec2(p));
+  }
+  const auto x = [&](double v) { return int(std::clamp(v, 0.0, double(width))); };
+  const auto y = [&](double v) { return int(std::clamp(v, 0.0, double(height))); };
+  return {x(std::floor(lo.x) - 1.0), y(std::floor(lo.y) - 1.0), x(std::ceil(hi.x) + 1.0),
+          y(std::ceil(hi.y) + 1.0)};
+}
+
+bool overlap(const TileRect& a, const TileRect& b) {
+  return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+}
+
+}  // namespace
+
 void RaycastRenderer::render(const Camera& camera, int frame, const WorkShare& share,
                              Framebuffer& fb, FrameStats& stats) {
   Stopwatch clock;
 
   const ScreenTiles tiles(fb.width, fb.height);
-  const std::vector<int> mine = tiles.owned(share);
+  // Tiles beyond the projection of what the scene holds stay empty without a ray: a scene part
+  // (--distribute data) casts only where its regions project.
+  const TileRect under = pixelsUnder(held_, camera, fb.width, fb.height);
+  std::vector<int> mine;
+  for (int t : tiles.owned(share))
+    if (overlap(tiles.tile(t), under)) mine.push_back(t);
   const long count = long(mine.size());
   long rays = 0;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(options_.threads) reduction(+ : rays)

@@ -33,6 +33,7 @@ class RaycastRenderer : public Renderer {
   RenderOptions options_;
   RaycastTuning tuning_;
   EmbreeScene embree_;
+  Bounds held_;  // world box of what embree_ holds: no ray beyond its projection
 };
 
 }  // namespace lzb

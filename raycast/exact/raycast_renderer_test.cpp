@@ -54,6 +54,37 @@ TEST(RaycastRenderer, PixelsAreCentreRaysAndColourIsLeftToTheDriver) {
   EXPECT_GE(setup.shared.value("embree_scenes", 0.0), 1.0);
 }
 
+TEST(RaycastRenderer, CastsOnlyWhereTheSceneProjectsWithTheSameHits) {
+  const Scene scene = test::nestedScene();
+  RaycastRenderer r(scene, test::renderOptions("raycast", 2));
+  // From far off the scene covers the middle of the frame; on each side the camera is inside or
+  // beside its box (every tile cast).
+  const glm::dvec3 c = scene.bounds().center();
+  const double d = scene.bounds().diagonal();
+  for (const glm::dvec3& eye : {c + glm::dvec3(0, 0, 6 * d), c + glm::dvec3(0.1 * d, 0, 0)}) {
+    const Camera cam = test::lookAtCamera(eye, c - glm::dvec3(0, 0, 0.01 * d), 0.001 * d, 20 * d,
+                                          96, 64);
+    FrameStats stats;
+    const Framebuffer fb = test::renderFrame(r, cam, &stats);
+    EmbreeScene embree(scene, {});
+    size_t covered = 0;
+    for (int y = 0; y < cam.height(); ++y)
+      for (int x = 0; x < cam.width(); ++x) {
+        const RayHit h = embree.intersect(cam.position(), cam.pixelDirection(x + 0.5, y + 0.5),
+                                          cam.nearPlane(), cam.farPlane());
+        ASSERT_EQ(fb.id[fb.index(x, y)], h.id) << x << ", " << y;
+        covered += h.hit();
+      }
+    EXPECT_GT(covered, 0u);
+    const double rays = stats.counts.value("rays", 0.0);
+    if (eye.z > c.z + d) {
+      EXPECT_LT(rays, 0.5 * 96 * 64) << "tiles beyond the scene's projection cast no ray";
+    } else {
+      EXPECT_EQ(rays, 96.0 * 64.0) << "a box around the camera projects everywhere";
+    }
+  }
+}
+
 TEST(RaycastRenderer, RanksCompositeToTheSingleImage) {
   const Scene scene = test::nestedScene();
   RaycastRenderer r(scene, test::renderOptions("raycast", 2));
