@@ -94,11 +94,12 @@ def check(work, data):
             continue
         replicated = name.split("_data_")[0] + "_replicate"
         try:
-            print(f"ok: {name} ({words[0]}): the replicated files, {check_run(work, name, replicated)}")
+            shares = check_run(work, name, replicated)
+            print(f"ok: {name} ({words[0]}): the replicated files, {shares}")
         except (AssertionError, OSError, KeyError) as e:
             failures += 1
             print(f"FAIL: {name} ({words[0]}): {e}")
-    print(f"{failures} failed" if failures else "every data-mode run identical to the replicated one")
+    print(f"{failures} failed" if failures else "every data-mode run equals the replicated one")
     return 1 if failures else 0
 
 
