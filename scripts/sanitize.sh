@@ -14,7 +14,7 @@ if [ "${1:-}" = "--input" ]; then
   targets=(--target lzb scene_test core_test image_test cli_test fuzz_replay_test)
   suites='Builtin|Chessboard|City|Forest|MeshFile|Replicated|Sphereflake|TomlScene|TomlSceneErrors'
   suites+='|TomlTextCheck|Triangulate|Camera|CameraFraming|CameraPath|DepthKey|Framebuffer|Frustum'
-  suites+='|Mesh|Scene|FrameIoTest|Metrics|Reference|Compare|Info|Render|Batch'
+  suites+='|Mesh|Scene|ScenePart|FrameIoTest|Metrics|Reference|Compare|Info|Render|Batch'
   filter=(-R "^(($suites)\.|Targets/FuzzReplay\.|Cases/BadInput\.|unprivileged_error_paths$)")
 fi
 bash scripts/install-deps.sh --test
