@@ -42,7 +42,7 @@ glm::dvec3 centroid(const Mesh& mesh, size_t t) {
 }
 
 // A unit with the world transform of the node it names (to open it).
-struct Candidate {
+struct OpenableUnit {
   SceneUnit unit;
   uint32_t node;
   glm::dmat4 toWorld;
@@ -51,7 +51,7 @@ struct Candidate {
 // The units node `node` (reached by `path`, placed by `toWorld`, its IDs from `idBase`) opens
 // into: its own mesh, then each instance whole.
 void openNode(const Scene& scene, uint32_t node, const std::vector<uint32_t>& path,
-              const glm::dmat4& toWorld, uint64_t idBase, std::vector<Candidate>& out) {
+              const glm::dmat4& toWorld, uint64_t idBase, std::vector<OpenableUnit>& out) {
   const Node& n = scene.nodes[node];
   if (!n.mesh.empty())
     out.push_back(
@@ -72,7 +72,7 @@ void openNode(const Scene& scene, uint32_t node, const std::vector<uint32_t>& pa
 
 // Larger first; among equals the earlier in ID order.
 struct Larger {
-  bool operator()(const Candidate& a, const Candidate& b) const {
+  bool operator()(const OpenableUnit& a, const OpenableUnit& b) const {
     if (a.unit.triangles != b.unit.triangles) return a.unit.triangles < b.unit.triangles;
     return a.unit.idBase > b.unit.idBase;
   }
@@ -163,17 +163,17 @@ glm::dvec3 SceneUnits::centre(const Scene& scene, size_t u) const {
 SceneUnits sceneUnits(const Scene& scene, uint32_t regions) {
   const Node& root = scene.rootNode();
   SceneUnits units;
-  std::vector<Candidate> open;
+  std::vector<OpenableUnit> open;
   openNode(scene, scene.root, {}, glm::dmat4(1.0), 0, open);
   if (!root.procedural && !root.mesh.empty()) {
     units.rootTriangles = root.mesh.size();
     open.erase(open.begin());  // the root's mesh: its triangles, one unit each
   }
   const uint64_t limit = std::max<uint64_t>(1, scene.expandedTriangles() / (8 * uint64_t(regions)));
-  std::priority_queue<Candidate, std::vector<Candidate>, Larger> queue(Larger{}, std::move(open));
+  std::priority_queue<OpenableUnit, std::vector<OpenableUnit>, Larger> queue(Larger{}, std::move(open));
   size_t opened = 0;
   while (!queue.empty()) {
-    Candidate c = queue.top();
+    OpenableUnit c = queue.top();
     queue.pop();
     const bool openable =
         c.unit.subtree && !scene.nodes[c.node].instances.empty() && opened < kMaxOpened;
@@ -182,9 +182,9 @@ SceneUnits sceneUnits(const Scene& scene, uint32_t regions) {
       continue;
     }
     ++opened;
-    std::vector<Candidate> children;
+    std::vector<OpenableUnit> children;
     openNode(scene, c.node, c.unit.path, c.toWorld, c.unit.idBase, children);
-    for (Candidate& child : children) queue.push(std::move(child));
+    for (OpenableUnit& child : children) queue.push(std::move(child));
   }
   std::sort(units.opened.begin(), units.opened.end(),
             [](const SceneUnit& a, const SceneUnit& b) { return a.idBase < b.idBase; });
