@@ -80,7 +80,10 @@ class PartRenderer : public Renderer {
     const Scene& scene = held_.part->scene;
     // The part's IDs name its own triangles: shade first, then renumber.
     if (inner_->colourFromIds()) shadeFromIds(scene, camera, fb);
-    for (uint64_t& id : fb.id) id = held_.part->ids.global(id);
+    const IdMap& ids = held_.part->ids;
+    const long n = long(fb.id.size());
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i) fb.id[size_t(i)] = ids.global(fb.id[size_t(i)]);
     stats.addStage("shade", clock.seconds());
   }
 
