@@ -85,8 +85,9 @@ void splitRange(std::span<const glm::dvec3> centres, std::span<const uint64_t> t
     return ca < cb || (ca == cb && a < b);
   };
   const auto at = [&](size_t i) { return order.begin() + ptrdiff_t(i); };
+  const auto weight = [&](uint32_t u) -> uint64_t { return triangles.empty() ? 1 : triangles[u]; };
   uint64_t total = 0;
-  for (size_t i = begin; i < end; ++i) total += triangles[order[i]];
+  for (size_t i = begin; i < end; ++i) total += weight(order[i]);
   const uint32_t left = count / 2;
   // The cut: the first unit whose triangles, with those before it, pass the left regions'
   // share. Found by halving [lo, hi) with selections (O(n) in all), never a full sort.
@@ -97,15 +98,15 @@ void splitRange(std::span<const glm::dvec3> centres, std::span<const uint64_t> t
     const size_t mid = lo + (hi - lo) / 2;
     std::nth_element(at(lo), at(mid), at(hi), before);
     long double c = 0.0L;
-    for (size_t i = lo; i < mid; ++i) c += triangles[order[i]];
-    if (costBefore + c + 0.5L * triangles[order[mid]] < target) {
-      costBefore += c + triangles[order[mid]];
+    for (size_t i = lo; i < mid; ++i) c += weight(order[i]);
+    if (costBefore + c + 0.5L * weight(order[mid]) < target) {
+      costBefore += c + weight(order[mid]);
       lo = mid + 1;
     } else {
       hi = mid;
     }
   }
-  if (hi - lo == 1 && costBefore + 0.5L * triangles[order[lo]] < target) ++lo;
+  if (hi - lo == 1 && costBefore + 0.5L * weight(order[lo]) < target) ++lo;
   const size_t cut = std::clamp(lo, begin + 1, end - 1);
   // order[begin, cut) must be the cut's smallest units, whatever the halving left in place.
   std::nth_element(at(begin), at(cut), at(end), before);

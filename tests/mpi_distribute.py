@@ -9,14 +9,19 @@ of one rank showing through another's), and every report must prove the scene wa
 ranks' held triangles sum to the scene's, each region held once, a rank with a share draws only
 from it (the zbuffer's triangles drawn per rank sum to the replicated count) and, with 7 regions,
 every rank holds some. With 2 frame groups of 3 ranks, each group holds the whole scene.
+The landscape and two binary PLY files (the city exported, and a terrain far from the origin that
+the loader stores recentred) are streamed, each rank keeping only its triangles; the bunny (OFF)
+is loaded whole and cut.
 
 usage: mpi_distribute.py LZB MPIEXEC WORK [DATA]
 """
 import filecmp
 import json
+import math
 import os
 import shlex
 import shutil
+import struct
 import subprocess
 import sys
 
@@ -28,16 +33,46 @@ FILES = ["frame_0000.png", "frame_0000.exr", "frame_0001.png", "frame_0001.exr"]
 COMMON = ["--frames", "2", "--width", "160", "--height", "120", "--threads", "1", "--quiet"]
 
 
-def scenes(data):
+def far_terrain(path, n=24, offset=1.0e6):
+    """A binary PLY height field of 2 (n-1)^2 triangles around (offset, offset, 0)."""
+    verts = [(offset + i, offset + j, 2.0 * math.sin(0.5 * i) * math.cos(0.4 * j))
+             for j in range(n) for i in range(n)]
+    faces = []
+    for j in range(n - 1):
+        for i in range(n - 1):
+            a, b, c, d = j * n + i, j * n + i + 1, (j + 1) * n + i + 1, (j + 1) * n + i
+            faces += [(a, b, c), (a, c, d)]
+    with open(path, "wb") as f:
+        f.write((f"ply\nformat binary_little_endian 1.0\nelement vertex {len(verts)}\n"
+                 "property double x\nproperty double y\nproperty double z\n"
+                 f"element face {len(faces)}\nproperty list uchar int vertex_indices\n"
+                 "end_header\n").encode())
+        for v in verts:
+            f.write(struct.pack("<3d", *v))
+        for t in faces:
+            f.write(struct.pack("<B3i", 3, *t))
+
+
+def make_files(lzb, work):
+    """The PLY scenes, written into work."""
+    city = os.path.join(work, "city.ply")
+    subprocess.run([lzb, "export", "builtin:city?blocks=2", city, "--quiet"], check=True,
+                   stdout=subprocess.DEVNULL)
+    far_terrain(os.path.join(work, "far.ply"))
+
+
+def scenes(work, data):
+    files = [os.path.join(work, "city.ply"), os.path.join(work, "far.ply")]
     bunny = os.path.join(data, "bunny00.off") if data else ""
-    return SCENES + ([bunny] if bunny and os.path.exists(bunny) and os.path.getsize(bunny) else [])
+    return SCENES + files + ([bunny] if bunny and os.path.exists(bunny) and os.path.getsize(bunny)
+                             else [])
 
 
-def runs(data):
+def runs(work, data):
     """(name, ranks, words) of every render: the replicated ones on 1 rank."""
     out = []
     for method in METHODS:
-        for i, scene in enumerate(scenes(data)):
+        for i, scene in enumerate(scenes(work, data)):
             base = [scene, "--method", method, *COMMON]
             out.append((f"{method}_{i}_replicate", 1, base))
             for ranks in RANKS:
@@ -53,7 +88,7 @@ def runs(data):
 def render(lzb, mpiexec, work, data):
     for ranks in RANKS:
         lines = [shlex.join(words + ["--out", os.path.join(work, name)])
-                 for name, r, words in runs(data) if r == ranks]
+                 for name, r, words in runs(work, data) if r == ranks]
         batch = os.path.join(work, f"ranks{ranks}.batch")
         with open(batch, "w") as f:
             f.write("\n".join(lines) + "\n")
@@ -89,7 +124,7 @@ def check_run(work, name, replicated):
 
 def check(work, data):
     failures = 0
-    for name, ranks, words in runs(data):
+    for name, ranks, words in runs(work, data):
         if name.endswith("_replicate"):
             continue
         replicated = name.split("_data_")[0] + "_replicate"
@@ -111,6 +146,7 @@ def main(argv):
     data = argv[3] if len(argv) > 3 else ""
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
+    make_files(lzb, work)
     render(lzb, mpiexec, work, data)
     return check(work, data)
 

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
-"""--distribute data against replicate: peak memory per rank, set-up and median frame of the exact
-methods on the 9.6 M-triangle landscape (builtin:landscape?objects=400000) at 640x480, 6 frames
-(the first dropped), on 1 rank x 2 threads (replicated) and 2 ranks x 1 thread in both modes.
-The first step of the study issue 31 asks for (more methods, sizes and rank counts to come).
+"""--distribute data against replicate: peak memory per rank, load (with the cut), set-up and
+median frame of the exact methods on the 9.6 M-triangle landscape
+(builtin:landscape?objects=400000, generated twice under data, each rank keeping its share) at
+640x480, 6 frames (the first dropped): replicated on 1 rank x 2 threads and 2 x 1, data on 1 x 2,
+2 x 1 and 3 x 1 (3 ranks oversubscribe the 2 cores: their times are not speedups).
 
 Usage: python3 runs/distribute/run.py [--quick]   (from the repository root, after
        scripts/build.sh)
@@ -21,7 +22,8 @@ QUICK = "--quick" in sys.argv
 SCENE = "builtin:landscape?objects=4000" if QUICK else "builtin:landscape?objects=400000"
 FRAMES = 3 if QUICK else 6
 METHODS = ["raycast", "zbuffer"]
-CONFIGS = [(1, 2, "replicate"), (2, 1, "replicate"), (2, 1, "data")]  # ranks, threads, mode
+CONFIGS = [(1, 2, "replicate"), (2, 1, "replicate"), (1, 2, "data"), (2, 1, "data"),
+           (3, 1, "data")]  # ranks, threads, mode
 
 
 def main():

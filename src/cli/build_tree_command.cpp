@@ -1,7 +1,5 @@
 #include "src/cli/build_tree_command.hpp"
 
-#include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -14,9 +12,8 @@
 #include "src/sampletree/external_build.hpp"
 #include "src/sampletree/tree_build.hpp"
 #include "src/sampletree/tree_store.hpp"
-#include "src/scene/builtin.hpp"
+#include "src/scene/chunked_scene.hpp"
 #include "src/scene/load.hpp"
-#include "src/scene/ply_stream.hpp"
 
 namespace lzb {
 
@@ -42,59 +39,26 @@ namespace {
 constexpr double kMaxMemMb = 1048576.0;  // 1 TiB
 
 // The scene as a stream: a streaming generator regenerates it on every pass and a binary PLY
-// file is read again on every pass, neither held whole; any other scene is loaded and its
-// expanded triangles streamed.
+// file is read again on every pass, neither held whole (src/scene/chunked_scene.hpp); any other
+// scene is loaded and its expanded triangles streamed.
 struct SceneInput {
   std::optional<Scene> scene;
-  std::unique_ptr<PlyMeshStream> ply;
+  std::optional<ChunkedScene> chunked;
   std::unique_ptr<sampletree::TriangleStream> stream;
 };
 
-bool isPly(const std::string& spec) {
-  std::string ext = std::filesystem::path(spec).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
-  return ext == ".ply";
-}
-
-// The PLY file streamed, or false (with a note why) when it is left to the loader.
-bool openPlyStream(const std::string& spec, bool quiet, SceneInput& in) {
-  std::string why;
-  in.ply = PlyMeshStream::open(spec, why);
-  if (!in.ply) {
-    if (!quiet)
-      std::fprintf(stderr, "note: %s: loaded whole, not streamed (%s)\n", spec.c_str(),
-                   why.c_str());
-    return false;
-  }
-  if (!quiet) warnDropped(spec, in.ply->stats());
-  const PlyMeshStream& ply = *in.ply;
-  SceneOutline base;
-  base.source = spec;
-  in.stream = std::make_unique<sampletree::MeshChunkStream>(
-      base, ply.triangles(),
-      [&ply](const std::function<void(const Mesh&)>& out) {
-        ply.forEachChunk(out);
-        return ply.stats();
-      },
-      sampletree::MeshChunkStream::Kind::kFile, ply.placement());
-  return true;
-}
-
 SceneInput openSceneStream(const std::string& spec, bool quiet) {
   SceneInput in;
-  const std::string prefix = "builtin:";
-  if (spec.rfind(prefix, 0) == 0)
-    if (auto chunks = builtinChunks(spec.substr(prefix.size()))) {
-      SceneOutline base;
-      base.source = spec;
-      base.camera = chunks->camera;
-      in.stream = std::make_unique<sampletree::MeshChunkStream>(
-          base, chunks->triangles, std::move(chunks->generate),
-          sampletree::MeshChunkStream::Kind::kGenerator);
-      return in;
-    }
-  if (isPly(spec) && openPlyStream(spec, quiet, in)) return in;
+  in.chunked = openChunkedScene(spec, quiet);
+  if (in.chunked) {
+    const ChunkedScene& c = *in.chunked;
+    in.stream = std::make_unique<sampletree::MeshChunkStream>(
+        c.base, c.triangles, c.chunks,
+        c.generated ? sampletree::MeshChunkStream::Kind::kGenerator
+                    : sampletree::MeshChunkStream::Kind::kFile,
+        c.placement);
+    return in;
+  }
   in.scene = loadScene(spec, quiet);
   in.stream = std::make_unique<sampletree::SceneStream>(*in.scene);
   return in;

@@ -15,44 +15,43 @@ Distribution parseDistribution(const std::string& text, const std::string& field
   throw InputError(field + ": unknown distribution '" + text + "' (replicate | data)");
 }
 
-uint32_t defaultRegions(const Scene& scene) {
-  return uint32_t(std::clamp<uint64_t>(scene.uniqueTriangles() >> 16, 16, 4096));
+uint32_t defaultRegions(uint64_t uniqueTriangles) {
+  return uint32_t(std::clamp<uint64_t>(uniqueTriangles >> 16, 16, 4096));
 }
 
 bool rendersParts(const std::string& method) {
   return method == "zbuffer" || method == "raycast";
 }
 
-namespace {
-
-// Each unit's region, from the units' centres and triangles (held only while splitting).
-std::vector<uint32_t> regionsOfUnits(const Scene& whole, const SceneUnits& units,
-                                     uint32_t regions) {
-  std::vector<glm::dvec3> centres(units.size());
-  std::vector<uint64_t> triangles(units.size());
-  for (size_t u = 0; u < units.size(); ++u) {
-    centres[u] = units.centre(whole, u);
-    triangles[u] = units.triangles(u);
-  }
-  return splitIntoRegions(centres, triangles, regions);
+std::vector<bool> keepOfRank(std::span<const glm::dvec3> centres,
+                             std::span<const uint64_t> triangles, HeldShare& held,
+                             const WorkShare& share) {
+  const std::vector<uint32_t> regionOf = splitIntoRegions(centres, triangles, held.regions);
+  std::vector<uint64_t> regionTriangles(held.regions, 0);
+  for (size_t u = 0; u < regionOf.size(); ++u)
+    regionTriangles[regionOf[u]] += triangles.empty() ? 1 : triangles[u];
+  held.mine = regionsOfRank(regionTriangles, share);
+  std::vector<bool> mineRegion(held.regions, false);
+  for (uint32_t r : held.mine) mineRegion[r] = true;
+  std::vector<bool> keep(regionOf.size());
+  for (size_t u = 0; u < regionOf.size(); ++u) keep[u] = mineRegion[regionOf[u]];
+  return keep;
 }
-
-}  // namespace
 
 HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share) {
   HeldShare held;
-  held.regions = regions;
-  const SceneUnits units = sceneUnits(whole, regions);
+  held.regions = regions ? regions : defaultRegions(whole.uniqueTriangles());
+  const SceneUnits units = sceneUnits(whole, held.regions);
   held.units = units.size();
-  std::vector<bool> keep(units.size());
+  std::vector<bool> keep;
   {
-    const std::vector<uint32_t> regionOf = regionsOfUnits(whole, units, regions);
-    std::vector<uint64_t> regionTriangles(regions, 0);
-    for (size_t u = 0; u < units.size(); ++u) regionTriangles[regionOf[u]] += units.triangles(u);
-    held.mine = regionsOfRank(regionTriangles, share);
-    std::vector<bool> mineRegion(regions, false);
-    for (uint32_t r : held.mine) mineRegion[r] = true;
-    for (size_t u = 0; u < units.size(); ++u) keep[u] = mineRegion[regionOf[u]];
+    std::vector<glm::dvec3> centres(units.size());
+    std::vector<uint64_t> triangles(units.size());
+    for (size_t u = 0; u < units.size(); ++u) {
+      centres[u] = units.centre(whole, u);
+      triangles[u] = units.triangles(u);
+    }
+    keep = keepOfRank(centres, triangles, held, share);
   }
   held.part = std::make_unique<ScenePart>(cutScene(whole, units, keep));
   return held;

@@ -7,6 +7,7 @@
 // ranks' frames are composited by depth, colour travelling with each pixel.
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -22,7 +23,7 @@ Distribution parseDistribution(const std::string& text, const std::string& field
 
 // The regions of a scene when --regions is 0: one per 2^16 unique triangles, at least 16 and at
 // most 4096, from the scene's size alone (never the rank count).
-uint32_t defaultRegions(const Scene& scene);
+uint32_t defaultRegions(uint64_t uniqueTriangles);
 
 // Whether `method` renders a part (the exact references so far); the others are refused.
 bool rendersParts(const std::string& method);
@@ -35,8 +36,15 @@ struct HeldShare {
   std::unique_ptr<ScenePart> part;  // their units
 };
 
-// Cuts `whole` into `regions` regions and keeps those of rank share.rank.
+// Cuts `whole` into `regions` regions (0: defaultRegions) and keeps those of rank share.rank.
 HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share);
+
+// Which units rank share.rank keeps, given the units' world centres and triangles (empty: one
+// each), with held.regions set: cuts the regions (splitIntoRegions), deals them (regionsOfRank)
+// and sets held.mine. The one cut of both the loaded and the streamed scene (streamed_share.hpp).
+std::vector<bool> keepOfRank(std::span<const glm::dvec3> centres,
+                             std::span<const uint64_t> triangles, HeldShare& held,
+                             const WorkShare& share);
 
 // A renderer of a rank's part, wrapping `inner` (made on part.scene; none when the part is
 // empty): it renders the whole frame of the part, shades it and maps its IDs to the whole

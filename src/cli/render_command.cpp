@@ -159,13 +159,9 @@ void renderFrames(const RenderArgs& a, const mpi::Group& world, const mpi::SubGr
   progress.done();
 }
 
-// --distribute data: this rank's regions cut from the loaded scene, which the plan then gives up
-// for its outline (camera paths and clip planes come out alike), and the renderer of the part.
-std::unique_ptr<Renderer> createPartRenderer(const RenderArgs& a, const mpi::Group& group,
-                                             RenderPlan& plan, HeldShare& held) {
-  const uint32_t regions = a.regions ? a.regions : defaultRegions(plan.scene);
-  held = holdShare(plan.scene, regions, WorkShare{group.rank, group.size});
-  plan.scene = sceneFromOutline(plan.outline);
+// --distribute data: the renderer of this rank's part (loadPlan cut it).
+std::unique_ptr<Renderer> createPartRenderer(const RenderArgs& a, const RenderPlan& plan) {
+  const HeldShare& held = plan.held;
   std::unique_ptr<Renderer> inner;
   if (held.part->scene.expandedTriangles() > 0)
     inner = methodNamed(a.method, "--method").create(held.part->scene, plan.options);
@@ -180,7 +176,6 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
   // Everything one rank can get wrong alone (options, files, memory) is agreed on before any
   // rank writes anything or meets the others in a frame (mpi/failure.hpp).
   RenderPlan plan;
-  HeldShare held;  // --distribute data: outlives the renderer, which renders it
   std::unique_ptr<Renderer> renderer;
   Judge judge;
   double setupSeconds = 0.0;
@@ -192,10 +187,10 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
   });
   const mpi::SubGroups groups(g, a.frameGroups);
   mpi::agree(g, [&] {
-    loadPlan(a, talk, plan);
+    loadPlan(a, talk, plan, WorkShare{groups.group().rank, groups.group().size});
     Stopwatch setupClock;
     if (parseDistribution(a.distribute, "--distribute") == Distribution::kData)
-      renderer = createPartRenderer(a, groups.group(), plan, held);
+      renderer = createPartRenderer(a, plan);
     else
       renderer = methodNamed(a.method, "--method").create(plan.scene, plan.options);
     if (!a.reference.empty()) judge = makeJudge(a.reference, plan.scene, plan.options, groups.group().root());

@@ -9,10 +9,12 @@
 #include "mpi/composite.hpp"
 #include "src/cli/distribute.hpp"
 #include "src/cli/methods.hpp"
+#include "src/cli/streamed_share.hpp"
 #include "src/core/error.hpp"
 #include "src/core/system.hpp"
 #include "src/core/timer.hpp"
 #include "src/image/reference.hpp"
+#include "src/scene/chunked_scene.hpp"
 #include "src/scene/load.hpp"
 
 namespace lzb {
@@ -123,11 +125,27 @@ void loadSceneOf(const RenderArgs& a, bool talk, RenderPlan& plan) {
   plan.outline = outlineOf(plan.scene);
 }
 
+// --distribute data: this rank's part, streamed where the scene can be, else cut from the loaded
+// scene; the outline stands for the whole (camera paths and clip planes come out alike).
+void loadShareOf(const RenderArgs& a, bool talk, const WorkShare& share, RenderPlan& plan) {
+  if (const std::optional<ChunkedScene> chunked = openChunkedScene(a.scene, !talk)) {
+    plan.held = holdStreamedShare(*chunked, a.regions, share, plan.outline);
+  } else {
+    const Scene whole = loadScene(a.scene, !talk);
+    plan.held = holdShare(whole, a.regions, share);
+    plan.outline = outlineOf(whole);
+  }
+  plan.scene = sceneFromOutline(plan.outline);
+}
+
 }  // namespace
 
-void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan) {
+void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan, const WorkShare& share) {
   Stopwatch loadClock;
-  loadSceneOf(a, talk, plan);
+  if (parseDistribution(a.distribute, "--distribute") == Distribution::kData)
+    loadShareOf(a, talk, share, plan);
+  else
+    loadSceneOf(a, talk, plan);
   plan.loadSeconds = loadClock.seconds();
 
   plan.options.method = a.method;

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "src/cli/distribute.hpp"
 #include "src/cli/render_command.hpp"
 #include "src/core/camera.hpp"
 #include "src/core/renderer.hpp"
@@ -27,7 +28,9 @@ bool createOutput(const std::string& out);
 
 // The loaded scene and what every frame of a run shares.
 struct RenderPlan {
-  Scene scene;          // loaded, or standing for a method's stored outline (storedOutline())
+  // Loaded, or standing for a method's stored outline (storedOutline()) or, under --distribute
+  // data, for the whole scene of which `held` is this rank's part.
+  Scene scene;
   SceneOutline outline;  // what the report says of the scene
   bool sceneLoaded = true;
   RenderOptions options;
@@ -35,15 +38,18 @@ struct RenderPlan {
   int frames = 1;
   CameraSpec base;
   double loadSeconds = 0.0;
+  HeldShare held;  // --distribute data: this rank's part (renderers keep a reference to it)
   // The camera of frame f along the path of `frames` (scene keyframes, else a circle).
   Camera camera(int f) const;
 };
 
 // Loads a.scene into `plan` (in place: renderers keep a reference to the scene) unless the method
-// holds the scene itself and no --reference needs it (the method's outline then stands for it),
-// and resolves the
-// threads (useThreads), image size, clip planes and fov; checks the first camera, the sub-sample
-// size and the frame memory. Throws InputError.
-void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan);
+// holds the scene itself and no --reference needs it (the method's outline then stands for it);
+// under --distribute data, only the part of rank share.rank of its frame group (a binary PLY and
+// builtin:landscape streamed, never held whole; the other scenes loaded whole and cut). Resolves
+// the threads (useThreads), image size, clip planes and fov; checks the first camera, the
+// sub-sample size and the frame memory. Throws InputError.
+void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan,
+              const WorkShare& share = WorkShare{0, 1});
 
 }  // namespace lzb

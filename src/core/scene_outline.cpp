@@ -105,6 +105,18 @@ bool namesSameScene(const std::string& a, const std::string& b) {
   return std::filesystem::equivalent(a, b, ec) && !ec;
 }
 
+SceneOutline placedMeshOutline(SceneOutline base, const Bounds& nodeBounds,
+                               const glm::dmat4& placement, uint64_t triangles,
+                               const LoadStats& stats) {
+  const bool recentred = placement != glm::dmat4(1.0);
+  base.bounds = recentred ? nodeBounds.transformed(placement) : nodeBounds;
+  base.uniqueTriangles = base.expandedTriangles = triangles;
+  base.nodes = recentred ? 2 : 1;
+  base.instanceDepth = recentred ? 1 : 0;
+  base.stats = stats;
+  return base;
+}
+
 Scene sceneFromOutline(const SceneOutline& o) {
   Scene s;
   s.source = o.source;

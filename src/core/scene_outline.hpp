@@ -27,6 +27,14 @@ struct SceneOutline {
 
 SceneOutline outlineOf(const Scene& scene);
 
+// The outline of a scene that is one node of `triangles` stored triangles bounded by nodeBounds in
+// its own frame: the loader keeps a node at the origin as the root itself and a recentred one
+// (placement not the identity) as the root's one instance, so the bounds, node count and depth
+// follow that rule. base gives the source, light and camera.
+SceneOutline placedMeshOutline(SceneOutline base, const Bounds& nodeBounds,
+                               const glm::dmat4& placement, uint64_t triangles,
+                               const LoadStats& stats);
+
 // JSON text; doubles round-trip exactly, so a render from the outline frames the scene alike.
 std::string outlineText(const SceneOutline& outline);
 // Throws InputError naming `where` for text that is not an outline.

@@ -26,6 +26,12 @@ uint64_t IdMap::global(uint64_t local) const {
 
 namespace {
 
+const Node& nodeAtPath(const Scene& scene, const std::vector<uint32_t>& path) {
+  uint32_t n = scene.root;
+  for (uint32_t i : path) n = scene.nodes[n].instances[i].node;
+  return scene.nodes[n];
+}
+
 // Instances opened at most: each adds a few units.
 constexpr size_t kMaxOpened = size_t(1) << 20;
 
@@ -33,12 +39,6 @@ glm::dvec3 meshCentre(const Mesh& mesh, const glm::dmat4& toWorld) {
   Bounds b;
   for (const glm::vec3& p : mesh.positions) b.extend(glm::dvec3(p));
   return b.empty() ? glm::dvec3(toWorld[3]) : b.transformed(toWorld).center();
-}
-
-glm::dvec3 centroid(const Mesh& mesh, size_t t) {
-  return (glm::dvec3(mesh.vertex(t, 0)) + glm::dvec3(mesh.vertex(t, 1)) +
-          glm::dvec3(mesh.vertex(t, 2))) /
-         3.0;
 }
 
 // A unit with the world transform of the node it names (to open it).
@@ -101,9 +101,7 @@ struct PartBuilder {
     return made;
   }
   const Node& wholeNodeAt(const std::vector<uint32_t>& path) const {
-    uint32_t n = whole.root;
-    for (uint32_t i : path) n = whole.nodes[n].instances[i].node;
-    return whole.nodes[n];
+    return nodeAtPath(whole, path);
   }
   void copySubtree(uint32_t i) {
     std::vector<uint32_t> stack{i};
@@ -134,12 +132,11 @@ struct PartBuilder {
   }
 };
 
-// The root triangles t < count with keep[t], into the part's root (its first units).
-void cutRootTriangles(const Mesh& from, uint64_t count, const std::vector<bool>& keep,
+// The main mesh's triangles t < count with keep[t], into `to` (the part's first units).
+void cutMeshTriangles(const Mesh& from, uint64_t count, const std::vector<bool>& keep, Mesh& to,
                       ScenePart& part) {
   uint64_t kept = 0;
   for (uint64_t t = 0; t < count; ++t) kept += keep[t];
-  Mesh& to = part.scene.nodes[part.scene.root].mesh;
   to.positions.reserve(3 * kept);
   to.normals.reserve(kept);
   to.colors.reserve(kept);
@@ -156,18 +153,44 @@ void cutRootTriangles(const Mesh& from, uint64_t count, const std::vector<bool>&
 
 }  // namespace
 
+glm::dvec3 placedCentroid(const Mesh& mesh, size_t t, const glm::dmat4& toWorld) {
+  const glm::dvec3 c = (glm::dvec3(mesh.vertex(t, 0)) + glm::dvec3(mesh.vertex(t, 1)) +
+                        glm::dvec3(mesh.vertex(t, 2))) /
+                       3.0;
+  return glm::dvec3(toWorld * glm::dvec4(c, 1.0));
+}
+
+namespace {
+
+// The node of a scene's main mesh: down from the root while a node holds one instance alone.
+uint32_t mainMeshNode(const Scene& scene, SceneUnits& units) {
+  uint32_t n = scene.root;
+  while (scene.nodes[n].mesh.empty() && !scene.nodes[n].procedural &&
+         scene.nodes[n].instances.size() == 1) {
+    const Instance& inst = scene.nodes[n].instances[0];
+    units.meshPath.push_back(0);
+    units.meshToWorld = units.meshToWorld * inst.transform;
+    n = inst.node;
+  }
+  return n;
+}
+
+}  // namespace
+
 glm::dvec3 SceneUnits::centre(const Scene& scene, size_t u) const {
-  return u < rootTriangles ? centroid(scene.rootNode().mesh, u) : opened[u - rootTriangles].centre;
+  return u < meshTriangles ? placedCentroid(nodeAtPath(scene, meshPath).mesh, u, meshToWorld)
+                           : opened[u - meshTriangles].centre;
 }
 
 SceneUnits sceneUnits(const Scene& scene, uint32_t regions) {
-  const Node& root = scene.rootNode();
   SceneUnits units;
+  const uint32_t main = mainMeshNode(scene, units);
+  const Node& mesh = scene.nodes[main];
   std::vector<OpenableUnit> open;
-  openNode(scene, scene.root, {}, glm::dmat4(1.0), 0, open);
-  if (!root.procedural && !root.mesh.empty()) {
-    units.rootTriangles = root.mesh.size();
-    open.erase(open.begin());  // the root's mesh: its triangles, one unit each
+  openNode(scene, main, units.meshPath, units.meshToWorld, 0, open);
+  if (!mesh.procedural && !mesh.mesh.empty()) {
+    units.meshTriangles = mesh.mesh.size();
+    open.erase(open.begin());  // the main mesh: its triangles, one unit each
   }
   const uint64_t limit = std::max<uint64_t>(1, scene.expandedTriangles() / (8 * uint64_t(regions)));
   std::priority_queue<OpenableUnit, std::vector<OpenableUnit>, Larger> queue(Larger{}, std::move(open));
@@ -209,9 +232,13 @@ ScenePart cutScene(const Scene& whole, const SceneUnits& units, const std::vecto
   for (size_t n = 0; n < whole.nodes.size(); ++n) s.nodes[n].name = whole.nodes[n].name;
   PartBuilder build{whole, part, {}, {}, std::vector<bool>(whole.nodes.size(), false)};
   build.copied[whole.root] = true;  // the root is cut, never copied (no instance reaches it)
-  cutRootTriangles(whole.rootNode().mesh, units.rootTriangles, keep, part);
+  if (units.meshTriangles > 0) {
+    const uint32_t to = build.nodeAt(units.meshPath);
+    cutMeshTriangles(nodeAtPath(whole, units.meshPath).mesh, units.meshTriangles, keep,
+                     s.nodes[to].mesh, part);
+  }
   for (size_t u = 0; u < units.opened.size(); ++u)
-    if (keep[units.rootTriangles + u]) build.add(units.opened[u]);
+    if (keep[units.meshTriangles + u]) build.add(units.opened[u]);
   s.finalize();
   // Opened nodes and the root keep the whole scene's boxes (supersets of theirs): what is placed
   // relative to a node's box (Embree's recentred positions) then comes out bit for bit alike.

@@ -3,7 +3,7 @@
 // the map from the part's triangle IDs back to the whole scene's, so that an ID names the same
 // triangle on any number of ranks.
 //
-// The pieces ("units") are the root's own triangles, each alone, and whole instances with their
+// The pieces ("units") are the main mesh's triangles (the root's own, or a recentred mesh file's), each alone, and whole instances with their
 // subtrees; an instance too large for the region count is opened into its node's own mesh (one
 // unit) and its node's instances, the largest first. A procedural object's mesh stays one unit
 // (its layout maps a parameter point to a triangle). A part keeps the whole scene's instance
@@ -45,18 +45,22 @@ struct SceneUnit {
   glm::dvec3 centre{0.0};  // world position: the triangle's centroid, else its box's centre
 };
 
-// The units of `scene` for `regions` regions, in expanded-ID order: the root's own triangles (one
-// unit each, kept implicit: a scene of 10^8 triangles needs no 10^8 unit records), then the
-// rest. Instances holding more than 1/8 of a region's share are opened while any is (and can
-// be), at most 2^20 of them.
+// The units of `scene` for `regions` regions, in expanded-ID order: the triangles of its main mesh
+// (one unit each, kept implicit: a scene of 10^8 triangles needs no 10^8 unit records), then the
+// rest. The main mesh is the root's own, or, when the root holds only one instance, that of the
+// node such a chain of single instances leads to (a mesh file stored recentred, mesh_file.hpp).
+// Instances holding more than 1/8 of a region's share are opened while any is (and can be), at
+// most 2^20 of them.
 struct SceneUnits {
-  uint64_t rootTriangles = 0;     // units [0, rootTriangles): root triangle u
-  std::vector<SceneUnit> opened;  // the units after them
-  size_t size() const { return rootTriangles + opened.size(); }
+  std::vector<uint32_t> meshPath;  // the chain of instances from the root to the main mesh's node
+  glm::dmat4 meshToWorld{1.0};     // that node's frame -> world
+  uint64_t meshTriangles = 0;      // units [0, meshTriangles): the main mesh's triangle u
+  std::vector<SceneUnit> opened;   // the units after them
+  size_t size() const { return meshTriangles + opened.size(); }
   // Unit u's world centre and expanded triangles.
   glm::dvec3 centre(const Scene& scene, size_t u) const;
   uint64_t triangles(size_t u) const {
-    return u < rootTriangles ? 1 : opened[u - rootTriangles].triangles;
+    return u < meshTriangles ? 1 : opened[u - meshTriangles].triangles;
   }
 };
 SceneUnits sceneUnits(const Scene& scene, uint32_t regions);
@@ -69,5 +73,9 @@ struct ScenePart {
 
 // The part of `whole` made of the units u with keep[u] (units from sceneUnits(whole, ...)).
 ScenePart cutScene(const Scene& whole, const SceneUnits& units, const std::vector<bool>& keep);
+
+// The world centre of triangle t of `mesh` placed by `toWorld`: a main-mesh unit's centre, the
+// same whether the mesh was loaded whole or is streamed (src/cli/streamed_share.hpp).
+glm::dvec3 placedCentroid(const Mesh& mesh, size_t t, const glm::dmat4& toWorld);
 
 }  // namespace lzb

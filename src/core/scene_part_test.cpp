@@ -48,7 +48,7 @@ TEST(ScenePart, UnitsAreTheRootsTrianglesThenInstancesOpenedWhileLarge) {
   // pair: into its two instances; the mesh instances are leaves).
   const SceneUnits units = sceneUnits(s, 1);
   ASSERT_EQ(units.size(), 8u);
-  EXPECT_EQ(units.rootTriangles, 4u);
+  EXPECT_EQ(units.meshTriangles, 4u);
   std::vector<uint64_t> bases, triangles;
   for (size_t u = 0; u < units.size(); ++u) triangles.push_back(units.triangles(u));
   for (const SceneUnit& u : units.opened) bases.push_back(u.idBase);

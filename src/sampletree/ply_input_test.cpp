@@ -19,98 +19,19 @@
 #include "src/sampletree/triangle_stream.hpp"
 #include "src/scene/load.hpp"
 #include "src/scene/ply_stream.hpp"
+#include "tests/support/ply_files.hpp"
 
 namespace lzb::sampletree {
 namespace {
 
 namespace fs = std::filesystem;
+using test::PlyFile;
+using test::polygonMesh;
 
 fs::path scratch(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / "lzb_ply_input_test";
   fs::create_directories(dir);
   return dir / name;
-}
-
-// A PLY file written value by value in either byte order.
-struct PlyFile {
-  bool big = false;
-  std::string header, data;
-  template <class T>
-  void put(T v) {
-    char b[sizeof(T)];
-    std::memcpy(b, &v, sizeof(T));
-    if (big) std::reverse(b, b + sizeof(T));
-    data.append(b, sizeof(T));
-  }
-  fs::path write(const std::string& name) const {
-    const fs::path p = scratch(name);
-    std::ofstream(p, std::ios::binary)
-        << "ply\nformat " << (big ? "binary_big_endian" : "binary_little_endian") << " 1.0\n"
-        << header << "end_header\n"
-        << data;
-    return p;
-  }
-};
-
-// A jittered grid of coloured vertices (doubles, with properties to skip), faces of 1 to 6
-// vertices (lines, triangles, quads, concave pentagons, hexagons), repeated corners, a NaN vertex,
-// a colourless-property face list; `offset` moves it all (1e7: recentred by the loader).
-PlyFile polygonMesh(bool big, double offset, int n = 24) {
-  PlyFile f;
-  f.big = big;
-  const int vertices = n * n;
-  const int faces = (n - 1) * (n - 1);
-  f.header = "comment polygons\nelement vertex " + std::to_string(vertices) +
-             "\nproperty double x\nproperty double y\nproperty double z\nproperty float nx\n"
-             "property uchar red\nproperty uchar green\nproperty uchar blue\n"
-             "property list uchar int extra\nelement face " +
-             std::to_string(faces) +
-             "\nproperty uchar flags\nproperty list uchar int vertex_indices\n"
-             "property list ushort float weights\nelement edge 2\nproperty int a\nproperty int b\n";
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      const bool nan = i == 3 && j == 4;
-      f.put(nan ? std::numeric_limits<double>::quiet_NaN() : offset + i + jitter(rng));
-      f.put(offset + j + jitter(rng));
-      f.put(0.2 * std::sin(0.7 * i) + jitter(rng));
-      f.put(0.5f);
-      f.put(uint8_t(rng())), f.put(uint8_t(rng())), f.put(uint8_t(rng()));
-      f.put(uint8_t(i % 3));
-      for (int k = 0; k < i % 3; ++k) f.put(int32_t(k));
-    }
-  const auto at = [&](int i, int j) { return int32_t(j * n + i); };
-  for (int j = 0; j + 1 < n; ++j)
-    for (int i = 0; i + 1 < n; ++i) {
-      std::vector<int32_t> poly = {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)};
-      switch ((i + 2 * j) % 7) {
-        case 0:
-          poly.resize(3);
-          break;  // triangle
-        case 1:
-          poly.resize(2);
-          break;  // a line
-        case 2:
-          poly.insert(poly.begin() + 2, at(i, j));
-          break;  // concave-ish pentagon
-        case 3:
-          poly = {at(i, j), at(i, j), at(i + 1, j + 1)};
-          break;  // degenerate
-        case 4:
-          poly.push_back(at(i, j)), poly.push_back(at(i + 1, j));
-          break;  // hexagon, repeats
-        default:
-          break;  // quad
-      }
-      f.put(uint8_t(7));
-      f.put(uint8_t(poly.size()));
-      for (int32_t v : poly) f.put(v);
-      f.put(uint16_t(1));
-      f.put(0.25f);
-    }
-  for (int e = 0; e < 4; ++e) f.put(int32_t(e));
-  return f;
 }
 
 std::vector<StreamTriangle> gather(const TriangleStream& s) {
@@ -145,7 +66,7 @@ void expectStreamedEqualsLoaded(const fs::path& file) {
 }
 
 TEST(PlyInput, PolygonsAndColoursStreamAsLoaded) {
-  const fs::path file = polygonMesh(false, 0.0).write("polygons.ply");
+  const fs::path file = polygonMesh(false, 0.0).write(scratch("polygons.ply"));
   expectStreamedEqualsLoaded(file);
   std::string why;
   const auto ply = PlyMeshStream::open(file, why);
@@ -162,11 +83,11 @@ TEST(PlyInput, PolygonsAndColoursStreamAsLoaded) {
 }
 
 TEST(PlyInput, BigEndianStreamsAsLoaded) {
-  expectStreamedEqualsLoaded(polygonMesh(true, 0.0).write("big.ply"));
+  expectStreamedEqualsLoaded(polygonMesh(true, 0.0).write(scratch("big.ply")));
 }
 
 TEST(PlyInput, FarGeometryIsRecentredAsLoaded) {
-  const fs::path file = polygonMesh(false, 1e7).write("far.ply");
+  const fs::path file = polygonMesh(false, 1e7).write(scratch("far.ply"));
   expectStreamedEqualsLoaded(file);
   std::string why;
   EXPECT_NE(PlyMeshStream::open(file, why)->placement(), glm::dmat4(1.0));
@@ -189,7 +110,7 @@ TEST(PlyInput, OtherTypesStreamAsLoaded) {
     f.put(uint32_t(face.size()));
     for (uint32_t v : face) f.put(v);
   }
-  expectStreamedEqualsLoaded(f.write("types.ply"));
+  expectStreamedEqualsLoaded(f.write(scratch("types.ply")));
 }
 
 std::string refusal(const fs::path& file) {
@@ -208,7 +129,7 @@ TEST(PlyInput, MalformedFilesAreRefusedNamingTheFile) {
                            good.data.size() - 1}) {
     PlyFile f = good;
     f.data.resize(cut);
-    const fs::path file = f.write("cut.ply");
+    const fs::path file = f.write(scratch("cut.ply"));
     const std::string e = refusal(file);
     EXPECT_NE(e.find(file.string()), std::string::npos) << cut << ": " << e;
     EXPECT_NE(e.find("truncated"), std::string::npos) << cut << ": " << e;
@@ -219,17 +140,17 @@ TEST(PlyInput, MalformedFilesAreRefusedNamingTheFile) {
       "element face 1\nproperty list uchar int vertex_indices\n";
   for (int k = 0; k < 9; ++k) range.put(float(k % 4 == 0));
   range.put(uint8_t(3)), range.put(int32_t(0)), range.put(int32_t(1)), range.put(int32_t(3));
-  const fs::path out = range.write("range.ply");
+  const fs::path out = range.write(scratch("range.ply"));
   EXPECT_NE(refusal(out).find(out.string() + ": malformed: face 0 uses vertex 3 of 3"),
             std::string::npos)
       << refusal(out);
   PlyFile empty = range;
   empty.data.resize(empty.data.size() - 13);
   empty.put(uint8_t(0));
-  EXPECT_NE(refusal(empty.write("empty.ply")).find("face 0 has no vertices"), std::string::npos);
+  EXPECT_NE(refusal(empty.write(scratch("empty.ply"))).find("face 0 has no vertices"), std::string::npos);
   PlyFile header = range;
   header.header += "property list float int bad\n";
-  EXPECT_NE(refusal(header.write("header.ply")).find("integer type"), std::string::npos);
+  EXPECT_NE(refusal(header.write(scratch("header.ply"))).find("integer type"), std::string::npos);
   EXPECT_NE(refusal(scratch("missing.ply")).find("file not found"), std::string::npos);
 }
 
@@ -248,10 +169,10 @@ TEST(PlyInput, FilesTheLoaderReadsOtherwiseAreLeftToIt) {
   EXPECT_NE(why(ascii).find("ASCII"), std::string::npos);
   PlyFile comment = polygonMesh(false, 0.0, 4);
   comment.header.insert(comment.header.find("property double y"), "comment between properties\n");
-  EXPECT_NE(why(comment.write("comment.ply")).find("property line after"), std::string::npos);
+  EXPECT_NE(why(comment.write(scratch("comment.ply"))).find("property line after"), std::string::npos);
   PlyFile strips = polygonMesh(false, 0.0, 4);
   strips.header += "element tristrips 0\nproperty list int int vertex_indices\n";
-  EXPECT_NE(why(strips.write("strips.ply")).find("strips"), std::string::npos);
+  EXPECT_NE(why(strips.write(scratch("strips.ply"))).find("strips"), std::string::npos);
 }
 
 }  // namespace

@@ -59,16 +59,10 @@ void MeshChunkStream::forEach(const TriangleSink& sink) const {
   passed_ = true;
 }
 
-// The loader keeps a node at the origin as the root itself and a recentred one as the root's one
-// instance, placed: the bounds, node count and depth follow the same rule.
 SceneOutline MeshChunkStream::outline() const {
   if (!passed_) throw std::logic_error("MeshChunkStream: the outline needs a pass first");
-  SceneOutline o = outline_;
-  const bool recentred = placement_ != glm::dmat4(1.0);
-  o.bounds = recentred ? nodeBounds_.transformed(placement_) : nodeBounds_;
-  o.nodes = recentred ? 2 : 1;
-  o.instanceDepth = recentred ? 1 : 0;
-  return o;
+  return placedMeshOutline(outline_, nodeBounds_, placement_, outline_.uniqueTriangles,
+                           outline_.stats);
 }
 
 namespace {

@@ -1,0 +1,86 @@
+#include "src/cli/streamed_share.hpp"
+
+#include <vector>
+
+#include "src/core/system.hpp"
+
+namespace lzb {
+
+namespace {
+
+// Pass 1: the triangles' world centres and the node's own bounds; the outline from them.
+std::vector<glm::dvec3> centresOf(const ChunkedScene& scene, Bounds& box, SceneOutline& outline) {
+  requireMemory(32 * scene.triangles, scene.base.source,
+                "cutting the scene into regions (--distribute data)");
+  std::vector<glm::dvec3> centres;
+  centres.reserve(scene.triangles);
+  const LoadStats stats = scene.chunks([&](const Mesh& mesh) {
+    for (const glm::vec3& p : mesh.positions) box.extend(glm::dvec3(p));
+    for (size_t t = 0; t < mesh.size(); ++t)
+      centres.push_back(placedCentroid(mesh, t, scene.placement));
+  });
+  outline = placedMeshOutline(scene.base, box, scene.placement, centres.size(), stats);
+  return centres;
+}
+
+// The part's frame: the root, holding the triangles or placing the recentred node that does.
+uint32_t partSkeleton(const ChunkedScene& scene, const SceneOutline& outline, Scene& s) {
+  s.source = outline.source;
+  s.camera = outline.camera;
+  s.stats = outline.stats;
+  s.root = s.addNode(outline.source);
+  if (scene.placement == glm::dmat4(1.0)) return s.root;
+  const uint32_t mesh = s.addNode(outline.source + "/recentred");
+  s.nodes[s.root].instances.push_back({mesh, scene.placement});
+  return mesh;
+}
+
+// Pass 2: the kept triangles, with the whole scene's IDs.
+void keepTriangles(const ChunkedScene& scene, const std::vector<bool>& keep, Mesh& to,
+                   ScenePart& part) {
+  uint64_t kept = 0;
+  for (bool k : keep) kept += k;
+  to.positions.reserve(3 * kept);
+  to.normals.reserve(kept);
+  to.colors.reserve(kept);
+  uint64_t id = 0;
+  scene.chunks([&](const Mesh& mesh) {
+    for (size_t t = 0; t < mesh.size(); ++t, ++id) {
+      if (id >= keep.size() || !keep[id]) continue;
+      to.positions.insert(to.positions.end(), mesh.positions.begin() + ptrdiff_t(3 * t),
+                          mesh.positions.begin() + ptrdiff_t(3 * t + 3));
+      to.normals.push_back(mesh.normals[t]);
+      to.colors.push_back(mesh.colors[t]);
+      part.ids.add(id, 1);
+    }
+  });
+  part.units = kept;
+}
+
+}  // namespace
+
+HeldShare holdStreamedShare(const ChunkedScene& scene, uint32_t regions, const WorkShare& share,
+                            SceneOutline& outline) {
+  HeldShare held;
+  std::vector<bool> keep;
+  Bounds nodeBox;
+  {
+    const std::vector<glm::dvec3> centres = centresOf(scene, nodeBox, outline);
+    held.regions = regions ? regions : defaultRegions(outline.uniqueTriangles);
+    held.units = centres.size();
+    keep = keepOfRank(centres, {}, held, share);
+  }
+  held.part = std::make_unique<ScenePart>();
+  ScenePart& part = *held.part;
+  const uint32_t meshNode = partSkeleton(scene, outline, part.scene);
+  keepTriangles(scene, keep, part.scene.nodes[meshNode].mesh, part);
+  part.scene.finalize();
+  // The whole scene's boxes, as cutScene keeps them (Embree places positions relative to them).
+  if (part.scene.expandedTriangles() > 0) {
+    part.scene.nodeBounds[meshNode] = nodeBox;
+    part.scene.nodeBounds[part.scene.root] = outline.bounds;
+  }
+  return held;
+}
+
+}  // namespace lzb

@@ -1,0 +1,22 @@
+#pragma once
+// --distribute data without loading the whole scene: a scene read as chunks (a binary PLY,
+// builtin:landscape; src/scene/chunked_scene.hpp) is read twice. The first pass takes each
+// triangle's world centre (32 bytes a triangle of the whole scene, freed before the second pass)
+// and cuts the regions from them as holdShare cuts the loaded scene's; the second keeps the
+// triangles of this rank's regions. The part, its IDs and the outline are those that loadScene,
+// holdShare and outlineOf give (streamed_share_test), so the frames are too.
+#include <cstdint>
+
+#include "src/cli/distribute.hpp"
+#include "src/core/scene_outline.hpp"
+#include "src/scene/chunked_scene.hpp"
+
+namespace lzb {
+
+// This rank's share of `scene` cut into `regions` regions (0: defaultRegions), and the whole
+// scene's outline. Throws InputError when the centres would not fit in memory, or as the reader
+// does (a file changed between the passes).
+HeldShare holdStreamedShare(const ChunkedScene& scene, uint32_t regions, const WorkShare& share,
+                            SceneOutline& outline);
+
+}  // namespace lzb

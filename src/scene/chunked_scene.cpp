@@ -1,0 +1,64 @@
+#include "src/scene/chunked_scene.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+
+#include "src/scene/builtin.hpp"
+#include "src/scene/load.hpp"
+#include "src/scene/ply_stream.hpp"
+
+namespace lzb {
+
+namespace {
+
+bool isPly(const std::string& spec) {
+  std::string ext = std::filesystem::path(spec).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
+  return ext == ".ply";
+}
+
+std::optional<ChunkedScene> generatedChunks(const std::string& spec) {
+  std::optional<BuiltinChunks> chunks = builtinChunks(spec.substr(std::string("builtin:").size()));
+  if (!chunks) return std::nullopt;
+  ChunkedScene c;
+  c.base.source = spec;
+  c.base.camera = chunks->camera;
+  c.triangles = chunks->triangles;
+  c.generated = true;
+  c.chunks = std::move(chunks->generate);
+  return c;
+}
+
+std::optional<ChunkedScene> streamedPly(const std::string& spec, bool quiet) {
+  std::string why;
+  std::shared_ptr<const PlyMeshStream> ply = PlyMeshStream::open(spec, why);
+  if (!ply) {
+    if (!quiet)
+      std::fprintf(stderr, "note: %s: loaded whole, not streamed (%s)\n", spec.c_str(),
+                   why.c_str());
+    return std::nullopt;
+  }
+  if (!quiet) warnDropped(spec, ply->stats());
+  ChunkedScene c;
+  c.base.source = spec;
+  c.triangles = ply->triangles();
+  c.placement = ply->placement();
+  c.chunks = [ply](const std::function<void(const Mesh&)>& out) {
+    ply->forEachChunk(out);
+    return ply->stats();
+  };
+  return c;
+}
+
+}  // namespace
+
+std::optional<ChunkedScene> openChunkedScene(const std::string& spec, bool quiet) {
+  if (spec.rfind("builtin:", 0) == 0) return generatedChunks(spec);
+  if (isPly(spec)) return streamedPly(spec, quiet);
+  return std::nullopt;
+}
+
+}  // namespace lzb

@@ -1,0 +1,35 @@
+#pragma once
+// A scene read as chunks of one node's triangles, never whole: a binary PLY streamed from its file
+// (ply_stream.hpp) or builtin:landscape generated (builtin.hpp). Every pass hands out the
+// triangles loadScene makes of the scene, in its ID order, in the node's stored frame; the loaded
+// scene holds them in its root or, for a file stored recentred, in the node its root's one
+// instance places (placedMeshOutline gives the outline either way). For builders that cannot
+// hold the scene: the sample tree's external build, a rank's share under --distribute data.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "src/core/scene.hpp"
+#include "src/core/scene_outline.hpp"
+
+namespace lzb {
+
+struct ChunkedScene {
+  using Chunks = std::function<LoadStats(const std::function<void(const Mesh&)>&)>;
+  SceneOutline base;          // the source and camera (counts and bounds come from a pass)
+  uint64_t triangles = 0;     // expected (a generator's before degenerate ones are dropped)
+  glm::dmat4 placement{1.0};  // the node's stored frame -> world
+  bool generated = false;     // made anew on every pass (a copy on disk may read faster)
+  Chunks chunks;              // one pass: hands out the chunks, returns what was kept and dropped
+};
+
+// `spec` as chunks, or nullopt when it is not read that way (another generator or format, or a
+// PLY that the loader reads otherwise: unless quiet, a note says why). Throws InputError as
+// loadScene would for a bad spec or file.
+std::optional<ChunkedScene> openChunkedScene(const std::string& spec, bool quiet);
+
+}  // namespace lzb
