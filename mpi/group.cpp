@@ -62,9 +62,13 @@ std::string privateSessionFolder() {
 }
 
 // A singleton runs alone: without a daemon (orted) of its own, which it would start only to spawn
-// processes, as lzb never does. Unless the user chose otherwise.
+// processes, as lzb never does, and without probing UCX's network devices for peers it does not
+// have (ob1 over the self transport: 0.41 -> 0.18 s an `lzb info`). Unless the user chose otherwise.
 void isolateSingleton() {
-  if (!launched()) setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
+  if (launched()) return;
+  setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
+  setenv("OMPI_MCA_pml", "ob1", 0);
+  setenv("OMPI_MCA_osc", "^ucx", 0);
 }
 
 }  // namespace

@@ -23,7 +23,9 @@ RunResult runLzb(const std::string& args, const std::string& shellPrefix) {
 
 std::string mpiexecPrefix(int ranks, int timeoutSeconds) {
   const std::filesystem::path sessions = workDir() / "mpi-sessions" / std::to_string(getpid());
-  return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_orte_tmpdir_base=" +
+  // Ranks of one machine: shared memory (ob1), no UCX probe (CMakeLists.txt, lzb_mpi_tests).
+  return "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_pml=ob1 "
+         "OMPI_MCA_osc=^ucx OMPI_MCA_orte_tmpdir_base=" +
          sessions.string() + " " +
          (timeoutSeconds > 0 ? "timeout " + std::to_string(timeoutSeconds) + " " : "") +
          LZB_MPIEXEC + " -n " + std::to_string(ranks) + " --oversubscribe ";
