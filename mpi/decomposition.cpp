@@ -64,6 +64,9 @@ std::vector<uint32_t> dealByCost(std::span<const double> costs, const WorkShare&
 
 namespace {
 
+// Halves with more units than this are split as tasks of their own.
+constexpr size_t kParallelUnits = size_t(1) << 16;
+
 // Splits the units order[begin, end) into regions [first, first + count).
 void splitRange(std::span<const glm::dvec3> centres, std::span<const uint64_t> triangles,
                 std::vector<uint32_t>& order, size_t begin, size_t end, uint32_t first,
@@ -90,28 +93,37 @@ void splitRange(std::span<const glm::dvec3> centres, std::span<const uint64_t> t
   for (size_t i = begin; i < end; ++i) total += weight(order[i]);
   const uint32_t left = count / 2;
   // The cut: the first unit whose triangles, with those before it, pass the left regions'
-  // share. Found by halving [lo, hi) with selections (O(n) in all), never a full sort.
+  // share. Units of one triangle each: its index. Else found by halving [lo, hi) with
+  // selections (O(n) in all), never a full sort.
   const long double target = (long double)total * left / count;
-  long double costBefore = 0.0L;  // of order[begin, lo)
-  size_t lo = begin, hi = end;
-  while (hi - lo > 1) {
-    const size_t mid = lo + (hi - lo) / 2;
-    std::nth_element(at(lo), at(mid), at(hi), before);
-    long double c = 0.0L;
-    for (size_t i = lo; i < mid; ++i) c += weight(order[i]);
-    if (costBefore + c + 0.5L * weight(order[mid]) < target) {
-      costBefore += c + weight(order[mid]);
-      lo = mid + 1;
-    } else {
-      hi = mid;
+  size_t lo = begin;
+  if (triangles.empty()) {
+    lo = std::min(end, begin + size_t(std::max(0.0L, std::ceil(target - 0.5L))));
+  } else {
+    long double costBefore = 0.0L;  // of order[begin, lo)
+    size_t hi = end;
+    while (hi - lo > 1) {
+      const size_t mid = lo + (hi - lo) / 2;
+      std::nth_element(at(lo), at(mid), at(hi), before);
+      long double c = 0.0L;
+      for (size_t i = lo; i < mid; ++i) c += weight(order[i]);
+      if (costBefore + c + 0.5L * weight(order[mid]) < target) {
+        costBefore += c + weight(order[mid]);
+        lo = mid + 1;
+      } else {
+        hi = mid;
+      }
     }
+    if (hi - lo == 1 && costBefore + 0.5L * weight(order[lo]) < target) ++lo;
   }
-  if (hi - lo == 1 && costBefore + 0.5L * weight(order[lo]) < target) ++lo;
   const size_t cut = std::clamp(lo, begin + 1, end - 1);
   // order[begin, cut) must be the cut's smallest units, whatever the halving left in place.
   std::nth_element(at(begin), at(cut), at(end), before);
+  // The halves touch disjoint ranges of order and regionOf: large ones split side by side.
+#pragma omp task default(shared) if (cut - begin > kParallelUnits)
   splitRange(centres, triangles, order, begin, cut, first, left, regionOf);
   splitRange(centres, triangles, order, cut, end, first + left, count - left, regionOf);
+#pragma omp taskwait
 }
 
 }  // namespace
@@ -120,7 +132,11 @@ std::vector<uint32_t> splitIntoRegions(std::span<const glm::dvec3> centres,
                                        std::span<const uint64_t> triangles, uint32_t regions) {
   std::vector<uint32_t> order(centres.size()), regionOf(centres.size(), 0);
   for (uint32_t u = 0; u < order.size(); ++u) order[u] = u;
-  if (regions > 0) splitRange(centres, triangles, order, 0, order.size(), 0, regions, regionOf);
+  if (regions > 0) {
+#pragma omp parallel
+#pragma omp single
+    splitRange(centres, triangles, order, 0, order.size(), 0, regions, regionOf);
+  }
   return regionOf;
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <omp.h>
 
 #include "src/core/error.hpp"
 
@@ -163,6 +164,27 @@ TEST(Regions, DependOnTheUnitsAloneAndDealContiguousRunsToRanks) {
       }
     }
   }
+}
+
+TEST(Regions, UnitTrianglesGiveTheWeightedSplitOnAnyThreadCount) {
+  // More units than a task's threshold (2^16), in a scattered order, with ties on an axis.
+  const size_t n = 300000;
+  std::vector<glm::dvec3> centres(n);
+  uint64_t x = 88172645463325252ull;
+  for (glm::dvec3& c : centres) {
+    x ^= x << 13, x ^= x >> 7, x ^= x << 17;
+    c = {double(x % 1000), double((x >> 20) % 1000) * 0.5, double((x >> 40) % 7)};
+  }
+  const std::vector<uint64_t> ones(n, 1);
+  omp_set_num_threads(1);
+  const std::vector<uint32_t> weighted = splitIntoRegions(centres, ones, 37);
+  omp_set_num_threads(2);
+  EXPECT_EQ(splitIntoRegions(centres, {}, 37), weighted) << "one triangle each, 2 threads";
+  EXPECT_EQ(splitIntoRegions(centres, ones, 37), weighted) << "weighted, 2 threads";
+  std::vector<uint64_t> perRegion(37, 0);
+  for (uint32_t r : weighted) ++perRegion[r];
+  const auto [fewest, most] = std::minmax_element(perRegion.begin(), perRegion.end());
+  EXPECT_LE(*most - *fewest, 1u) << "equal counts";
 }
 
 TEST(Regions, FewerUnitsThanRegionsLeaveRegionsEmpty) {

@@ -46,11 +46,11 @@ HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share
   std::vector<bool> keep;
   {
     std::vector<glm::dvec3> centres(units.size());
-    std::vector<uint64_t> triangles(units.size());
-    for (size_t u = 0; u < units.size(); ++u) {
-      centres[u] = units.centre(whole, u);
-      triangles[u] = units.triangles(u);
-    }
+    for (size_t u = 0; u < units.size(); ++u) centres[u] = units.centre(whole, u);
+    // Only the main mesh's triangles: one each, cut by count (none of the halving's selections).
+    std::vector<uint64_t> triangles;
+    if (!units.opened.empty())
+      for (size_t u = 0; u < units.size(); ++u) triangles.push_back(units.triangles(u));
     keep = keepOfRank(centres, triangles, held, share);
   }
   held.part = std::make_unique<ScenePart>(cutScene(whole, units, keep));
