@@ -87,9 +87,9 @@ std::vector<uint32_t> dealByCost(std::span<const double> costs, const WorkShare&
 // Cuts units (pieces of the scene that go whole to one region, at world position centres[u],
 // costing triangles[u], or 1 each when triangles is empty) into `regions` regions: a k-d split
 // that halves the region count at each step along the widest axis of its units' centres, at the
-// point where the triangles before it match the regions before it. Ties break by unit index, so the result depends on the units and
-// `regions` alone. Returns each unit's region in [0, regions); a region may stay empty when there
-// are fewer units than regions.
+// point where the triangles before it match the regions before it. Ties break by unit index, so
+// the result depends on the units and `regions` alone. Returns each unit's region in
+// [0, regions); a region may stay empty when there are fewer units than regions.
 std::vector<uint32_t> splitIntoRegions(std::span<const glm::dvec3> centres,
                                        std::span<const uint64_t> triangles, uint32_t regions);
 

@@ -63,7 +63,8 @@ std::string privateSessionFolder() {
 
 // A singleton runs alone: without a daemon (orted) of its own, which it would start only to spawn
 // processes, as lzb never does, and without probing UCX's network devices for peers it does not
-// have (ob1 over the self transport: 0.41 -> 0.18 s an `lzb info`). Unless the user chose otherwise.
+// have (ob1 over the self transport: 0.41 -> 0.18 s an `lzb info`). Unless the user chose
+// otherwise.
 void isolateSingleton() {
   if (launched()) return;
   setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);

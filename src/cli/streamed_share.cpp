@@ -38,23 +38,12 @@ uint32_t partSkeleton(const ChunkedScene& scene, const SceneOutline& outline, Sc
 // Pass 2: the kept triangles, with the whole scene's IDs.
 void keepTriangles(const ChunkedScene& scene, const std::vector<bool>& keep, Mesh& to,
                    ScenePart& part) {
-  uint64_t kept = 0;
-  for (bool k : keep) kept += k;
-  to.positions.reserve(3 * kept);
-  to.normals.reserve(kept);
-  to.colors.reserve(kept);
+  reserveKept(keep, keep.size(), to);
   uint64_t id = 0;
   scene.chunks([&](const Mesh& mesh) {
-    for (size_t t = 0; t < mesh.size(); ++t, ++id) {
-      if (id >= keep.size() || !keep[id]) continue;
-      to.positions.insert(to.positions.end(), mesh.positions.begin() + ptrdiff_t(3 * t),
-                          mesh.positions.begin() + ptrdiff_t(3 * t + 3));
-      to.normals.push_back(mesh.normals[t]);
-      to.colors.push_back(mesh.colors[t]);
-      part.ids.add(id, 1);
-    }
+    keepMainMeshTriangles(mesh, id, keep, to, part);
+    id += mesh.size();
   });
-  part.units = kept;
 }
 
 }  // namespace

@@ -132,26 +132,29 @@ struct PartBuilder {
   }
 };
 
-// The main mesh's triangles t < count with keep[t], into `to` (the part's first units).
-void cutMeshTriangles(const Mesh& from, uint64_t count, const std::vector<bool>& keep, Mesh& to,
-                      ScenePart& part) {
+}  // namespace
+
+void reserveKept(const std::vector<bool>& keep, uint64_t count, Mesh& to) {
   uint64_t kept = 0;
-  for (uint64_t t = 0; t < count; ++t) kept += keep[t];
-  to.positions.reserve(3 * kept);
-  to.normals.reserve(kept);
-  to.colors.reserve(kept);
-  for (uint64_t t = 0; t < count; ++t) {
-    if (!keep[t]) continue;
+  for (uint64_t t = 0; t < count && t < keep.size(); ++t) kept += keep[t];
+  to.positions.reserve(to.positions.size() + 3 * kept);
+  to.normals.reserve(to.normals.size() + kept);
+  to.colors.reserve(to.colors.size() + kept);
+}
+
+void keepMainMeshTriangles(const Mesh& from, uint64_t firstId, const std::vector<bool>& keep,
+                           Mesh& to, ScenePart& part) {
+  for (size_t t = 0; t < from.size(); ++t) {
+    const uint64_t id = firstId + t;
+    if (id >= keep.size() || !keep[id]) continue;
     to.positions.insert(to.positions.end(), from.positions.begin() + ptrdiff_t(3 * t),
                         from.positions.begin() + ptrdiff_t(3 * t + 3));
     to.normals.push_back(from.normals[t]);
     to.colors.push_back(from.colors[t]);
-    part.ids.add(t, 1);
+    part.ids.add(id, 1);
+    ++part.units;
   }
-  part.units += kept;
 }
-
-}  // namespace
 
 glm::dvec3 placedCentroid(const Mesh& mesh, size_t t, const glm::dmat4& toWorld) {
   const glm::dvec3 c = (glm::dvec3(mesh.vertex(t, 0)) + glm::dvec3(mesh.vertex(t, 1)) +
@@ -233,9 +236,9 @@ ScenePart cutScene(const Scene& whole, const SceneUnits& units, const std::vecto
   PartBuilder build{whole, part, {}, {}, std::vector<bool>(whole.nodes.size(), false)};
   build.copied[whole.root] = true;  // the root is cut, never copied (no instance reaches it)
   if (units.meshTriangles > 0) {
-    const uint32_t to = build.nodeAt(units.meshPath);
-    cutMeshTriangles(nodeAtPath(whole, units.meshPath).mesh, units.meshTriangles, keep,
-                     s.nodes[to].mesh, part);
+    Mesh& to = s.nodes[build.nodeAt(units.meshPath)].mesh;
+    reserveKept(keep, units.meshTriangles, to);
+    keepMainMeshTriangles(nodeAtPath(whole, units.meshPath).mesh, 0, keep, to, part);
   }
   for (size_t u = 0; u < units.opened.size(); ++u)
     if (keep[units.meshTriangles + u]) build.add(units.opened[u]);

@@ -3,9 +3,10 @@
 // the map from the part's triangle IDs back to the whole scene's, so that an ID names the same
 // triangle on any number of ranks.
 //
-// The pieces ("units") are the main mesh's triangles (the root's own, or a recentred mesh file's), each alone, and whole instances with their
-// subtrees; an instance too large for the region count is opened into its node's own mesh (one
-// unit) and its node's instances, the largest first. A procedural object's mesh stays one unit
+// The pieces ("units") are the main mesh's triangles (the root's own, or a recentred mesh
+// file's), each alone, and whole instances with their subtrees; an instance too large for the
+// region count is opened into its node's own mesh (one unit) and its node's instances, the
+// largest first. A procedural object's mesh stays one unit
 // (its layout maps a parameter point to a triangle). A part keeps the whole scene's instance
 // chains, transforms and node boxes, and its units in the whole scene's order, so exact methods
 // compute every hit bit for bit as on the whole scene, and IDs rise with the whole scene's.
@@ -73,6 +74,13 @@ struct ScenePart {
 
 // The part of `whole` made of the units u with keep[u] (units from sceneUnits(whole, ...)).
 ScenePart cutScene(const Scene& whole, const SceneUnits& units, const std::vector<bool>& keep);
+
+// The main mesh's kept units, whole (cutScene) or chunk by chunk (a streamed scene): appends the
+// triangles t of `from` with keep[firstId + t] to `to`, with the whole scene's IDs firstId + t.
+void keepMainMeshTriangles(const Mesh& from, uint64_t firstId, const std::vector<bool>& keep,
+                           Mesh& to, ScenePart& part);
+// Room in `to` for the triangles keep marks among its first `count`.
+void reserveKept(const std::vector<bool>& keep, uint64_t count, Mesh& to);
 
 // The world centre of triangle t of `mesh` placed by `toWorld`: a main-mesh unit's centre, the
 // same whether the mesh was loaded whole or is streamed (src/cli/streamed_share.hpp).

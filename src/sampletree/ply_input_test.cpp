@@ -147,7 +147,8 @@ TEST(PlyInput, MalformedFilesAreRefusedNamingTheFile) {
   PlyFile empty = range;
   empty.data.resize(empty.data.size() - 13);
   empty.put(uint8_t(0));
-  EXPECT_NE(refusal(empty.write(scratch("empty.ply"))).find("face 0 has no vertices"), std::string::npos);
+  EXPECT_NE(refusal(empty.write(scratch("empty.ply"))).find("face 0 has no vertices"),
+            std::string::npos);
   PlyFile header = range;
   header.header += "property list float int bad\n";
   EXPECT_NE(refusal(header.write(scratch("header.ply"))).find("integer type"), std::string::npos);
@@ -169,7 +170,8 @@ TEST(PlyInput, FilesTheLoaderReadsOtherwiseAreLeftToIt) {
   EXPECT_NE(why(ascii).find("ASCII"), std::string::npos);
   PlyFile comment = polygonMesh(false, 0.0, 4);
   comment.header.insert(comment.header.find("property double y"), "comment between properties\n");
-  EXPECT_NE(why(comment.write(scratch("comment.ply"))).find("property line after"), std::string::npos);
+  EXPECT_NE(why(comment.write(scratch("comment.ply"))).find("property line after"),
+            std::string::npos);
   PlyFile strips = polygonMesh(false, 0.0, 4);
   strips.header += "element tristrips 0\nproperty list int int vertex_indices\n";
   EXPECT_NE(why(strips.write(scratch("strips.ply"))).find("strips"), std::string::npos);
