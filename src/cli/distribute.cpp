@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "mpi/decomposition.hpp"
+#include "src/cli/methods.hpp"
 #include "src/core/error.hpp"
 #include "src/core/shading.hpp"
 #include "src/core/timer.hpp"
@@ -19,31 +20,37 @@ uint32_t defaultRegions(uint64_t uniqueTriangles) {
   return uint32_t(std::clamp<uint64_t>(uniqueTriangles >> 16, 16, 4096));
 }
 
-bool rendersParts(const std::string& method) {
-  return method == "zbuffer" || method == "raycast";
-}
-
-std::vector<bool> keepOfRank(std::span<const glm::dvec3> centres,
-                             std::span<const uint64_t> triangles, HeldShare& held,
-                             const WorkShare& share) {
+PartOf partOfRank(std::span<const glm::dvec3> centres, std::span<const uint64_t> triangles,
+                  HeldShare& held, const WorkShare& share, Parts layout) {
   const std::vector<uint32_t> regionOf = splitIntoRegions(centres, triangles, held.regions);
   std::vector<uint64_t> regionTriangles(held.regions, 0);
   for (size_t u = 0; u < regionOf.size(); ++u)
     regionTriangles[regionOf[u]] += triangles.empty() ? 1 : triangles[u];
   held.mine = regionsOfRank(regionTriangles, share);
-  std::vector<bool> mineRegion(held.regions, false);
-  for (uint32_t r : held.mine) mineRegion[r] = true;
-  std::vector<bool> keep(regionOf.size());
-  for (size_t u = 0; u < regionOf.size(); ++u) keep[u] = mineRegion[regionOf[u]];
-  return keep;
+  held.layout = layout;
+  std::sort(held.mine.begin(), held.mine.end());
+  std::vector<uint32_t> partOfRegion(held.regions, kNoPart);
+  for (size_t k = 0; k < held.mine.size(); ++k)
+    partOfRegion[held.mine[k]] = layout == Parts::kOne ? 0 : uint32_t(k);
+  PartOf partOf(regionOf.size());
+  for (size_t u = 0; u < regionOf.size(); ++u) partOf[u] = partOfRegion[regionOf[u]];
+  return partOf;
 }
 
-HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share) {
+Parts partsFor(const std::string& method) {
+  return methodNamed(method, "--method").exact() ? Parts::kOne : Parts::kPerRegion;
+}
+
+uint32_t partCount(const HeldShare& held, Parts layout) {
+  return layout == Parts::kOne ? 1 : uint32_t(held.mine.size());
+}
+
+HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share, Parts layout) {
   HeldShare held;
   held.regions = regions ? regions : defaultRegions(whole.uniqueTriangles());
   const SceneUnits units = sceneUnits(whole, held.regions);
   held.units = units.size();
-  std::vector<bool> keep;
+  PartOf partOf;
   {
     std::vector<glm::dvec3> centres(units.size());
     for (size_t u = 0; u < units.size(); ++u) centres[u] = units.centre(whole, u);
@@ -51,9 +58,9 @@ HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share
     std::vector<uint64_t> triangles;
     if (!units.opened.empty())
       for (size_t u = 0; u < units.size(); ++u) triangles.push_back(units.triangles(u));
-    keep = keepOfRank(centres, triangles, held, share);
+    partOf = partOfRank(centres, triangles, held, share, layout);
   }
-  held.part = std::make_unique<ScenePart>(cutScene(whole, units, keep));
+  held.parts = cutScene(whole, units, partOf, partCount(held, layout));
   return held;
 }
 
@@ -61,53 +68,96 @@ namespace {
 
 class PartRenderer : public Renderer {
  public:
-  PartRenderer(const HeldShare& held, std::unique_ptr<Renderer> inner, std::string method)
+  PartRenderer(const HeldShare& held, std::vector<std::unique_ptr<Renderer>> inner,
+               std::string method)
       : held_(held), inner_(std::move(inner)), method_(std::move(method)) {}
 
-  std::string name() const override { return inner_ ? inner_->name() : method_; }
+  std::string name() const override {
+    for (const auto& r : inner_)
+      if (r) return r->name();
+    return method_;
+  }
   std::string decomposition() const override {
     return "data-parallel (--distribute data): each rank holds the scene's regions dealt to it "
            "and renders the whole frame of them; frames composited by depth with their colour";
   }
 
-  void render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
+  // Every rank renders its whole parts: the regions are the share.
+  void render(const Camera& camera, int frame, const WorkShare&, Framebuffer& fb,
               FrameStats& stats) override {
-    (void)share;          // every rank renders its whole part: the regions are the share
-    if (!inner_) return;  // nothing held: an empty frame
-    inner_->render(camera, frame, WorkShare{0, 1}, fb, stats);
-    Stopwatch clock;
-    const Scene& scene = held_.part->scene;
-    // The part's IDs name its own triangles: shade first, then renumber.
-    if (inner_->colourFromIds()) shadeFromIds(scene, camera, fb);
-    const IdMap& ids = held_.part->ids;
-    const long n = long(fb.id.size());
-#pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i) fb.id[size_t(i)] = ids.global(fb.id[size_t(i)]);
-    stats.addStage("shade", clock.seconds());
+    bool first = true;
+    for (size_t p = 0; p < inner_.size(); ++p) {
+      if (!inner_[p]) continue;  // an empty part
+      // The first part draws into the cleared frame, the others beside it.
+      Framebuffer& into = first ? fb : scratch(fb);
+      FrameStats own;
+      inner_[p]->render(camera, frame, WorkShare{0, 1}, into, own);
+      addStagesAndCounts(own, stats);
+      // One part of all the rank's regions: its figures are the frame's.
+      if (held_.layout == Parts::kOne) stats.shared = own.shared;
+      Stopwatch clock;
+      toWholeScene(*inner_[p], held_.parts[p], camera, into);
+      stats.addStage("shade", clock.seconds());
+      if (!first) {
+        clock = Stopwatch();
+        compositeNearer(fb, into);
+        stats.addStage("composite regions", clock.seconds());
+      }
+      first = false;
+    }
   }
 
   bool colourFromIds() const override { return false; }
 
   FrameStats setupStats() const override {
-    FrameStats stats = inner_ ? inner_->setupStats() : FrameStats{};
+    FrameStats stats;
+    for (const auto& r : inner_)
+      if (r) addStagesAndCounts(r->setupStats(), stats);
+    if (held_.layout == Parts::kOne && inner_[0]) stats.shared = inner_[0]->setupStats().shared;
     stats.addCount("held_regions", double(held_.mine.size()));
-    stats.addCount("held_units", double(held_.part->units));
-    stats.addCount("held_triangles", double(held_.part->scene.expandedTriangles()));
-    stats.addCount("held_unique_triangles", double(held_.part->scene.uniqueTriangles()));
+    for (const char* count : {"held_units", "held_triangles", "held_unique_triangles"})
+      stats.addCount(count, 0.0);  // a rank holding no region says so too
+    for (const ScenePart& part : held_.parts) {
+      stats.addCount("held_units", double(part.units));
+      stats.addCount("held_triangles", double(part.scene.expandedTriangles()));
+      stats.addCount("held_unique_triangles", double(part.scene.uniqueTriangles()));
+    }
     stats.setShared("regions", double(held_.regions));
     stats.setShared("units", double(held_.units));
     return stats;
   }
 
  private:
+  // The part's IDs name its own triangles: shade first, then renumber.
+  static void toWholeScene(const Renderer& inner, const ScenePart& part, const Camera& camera,
+                           Framebuffer& fb) {
+    if (inner.colourFromIds()) shadeFromIds(part.scene, camera, fb);
+    const long n = long(fb.id.size());
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i) fb.id[size_t(i)] = part.ids.global(fb.id[size_t(i)]);
+  }
+  static void addStagesAndCounts(const FrameStats& from, FrameStats& to) {
+    for (const auto& [name, seconds] : from.stageSeconds) to.addStage(name, seconds);
+    for (const auto& [name, value] : from.counts.items()) to.addCount(name, value.get<double>());
+  }
+  Framebuffer& scratch(const Framebuffer& like) {
+    if (scratch_.width != like.width || scratch_.height != like.height)
+      scratch_.resize(like.width, like.height);
+    else
+      scratch_.clear();
+    return scratch_;
+  }
+
   const HeldShare& held_;
-  std::unique_ptr<Renderer> inner_;
+  std::vector<std::unique_ptr<Renderer>> inner_;
   std::string method_;
+  Framebuffer scratch_;
 };
 
 }  // namespace
 
-std::unique_ptr<Renderer> makePartRenderer(const HeldShare& held, std::unique_ptr<Renderer> inner,
+std::unique_ptr<Renderer> makePartRenderer(const HeldShare& held,
+                                           std::vector<std::unique_ptr<Renderer>> inner,
                                            const std::string& method) {
   return std::make_unique<PartRenderer>(held, std::move(inner), method);
 }

@@ -5,6 +5,12 @@
 // keeps the units of its regions (src/core/scene_part.hpp). A rank then renders the whole frame
 // of its part, shades its own pixels and gives its IDs in the whole scene's numbering, and the
 // ranks' frames are composited by depth, colour travelling with each pixel.
+//
+// An exact method renders the nearest surface whatever else is held, so a rank's regions make
+// one part and the image is the replicated run's. Every other method samples, culls or chooses
+// from what it holds, so each region is a part of its own with its own renderer, composited by
+// depth on the rank: a region's image then depends on the region alone, and the same --regions
+// give the same image on any number of ranks.
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -25,31 +31,39 @@ Distribution parseDistribution(const std::string& text, const std::string& field
 // most 4096, from the scene's size alone (never the rank count).
 uint32_t defaultRegions(uint64_t uniqueTriangles);
 
-// Whether `method` renders a part (the exact references so far); the others are refused.
-bool rendersParts(const std::string& method);
+// How a rank's regions are held: as one part (exact methods) or one part per region.
+enum class Parts { kOne, kPerRegion };
 
 // What a rank holds of the scene.
 struct HeldShare {
-  uint32_t regions = 0;             // the scene's regions
-  uint64_t units = 0;               // the scene's units (src/core/scene_part.hpp)
-  std::vector<uint32_t> mine;       // the regions this rank holds
-  std::unique_ptr<ScenePart> part;  // their units
+  uint32_t regions = 0;          // the scene's regions
+  uint64_t units = 0;            // the scene's units (src/core/scene_part.hpp)
+  std::vector<uint32_t> mine;    // the regions this rank holds, in increasing order
+  Parts layout = Parts::kOne;
+  std::vector<ScenePart> parts;  // their units: one part, or one per region of `mine`
 };
 
+// The layout `method` renders: kOne for an exact method, else kPerRegion.
+Parts partsFor(const std::string& method);
+// The parts a share of `layout` has once held.mine is set.
+uint32_t partCount(const HeldShare& held, Parts layout);
+
 // Cuts `whole` into `regions` regions (0: defaultRegions) and keeps those of rank share.rank.
-HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share);
+HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share, Parts layout);
 
-// Which units rank share.rank keeps, given the units' world centres and triangles (empty: one
-// each), with held.regions set: cuts the regions (splitIntoRegions), deals them (regionsOfRank)
-// and sets held.mine. The one cut of both the loaded and the streamed scene (streamed_share.hpp).
-std::vector<bool> keepOfRank(std::span<const glm::dvec3> centres,
-                             std::span<const uint64_t> triangles, HeldShare& held,
-                             const WorkShare& share);
+// Which of this rank's parts each unit goes to, given the units' world centres and triangles
+// (empty: one each), with held.regions set: cuts the regions (splitIntoRegions), deals them
+// (regionsOfRank) and sets held.mine and held.layout. The one cut of both the loaded and the
+// streamed scene (streamed_share.hpp).
+PartOf partOfRank(std::span<const glm::dvec3> centres, std::span<const uint64_t> triangles,
+                  HeldShare& held, const WorkShare& share, Parts layout);
 
-// A renderer of a rank's part, wrapping `inner` (made on part.scene; none when the part is
-// empty): it renders the whole frame of the part, shades it and maps its IDs to the whole
-// scene's. Its set-up reports the regions and triangles this rank holds.
-std::unique_ptr<Renderer> makePartRenderer(const HeldShare& held, std::unique_ptr<Renderer> inner,
+// A renderer of a rank's parts, wrapping one renderer per part (`inner[p]` made on
+// held.parts[p].scene; none for an empty part): it renders the whole frame of each part, shades
+// it, maps its IDs to the whole scene's and composites the parts by depth. Its set-up reports the
+// regions and triangles this rank holds.
+std::unique_ptr<Renderer> makePartRenderer(const HeldShare& held,
+                                           std::vector<std::unique_ptr<Renderer>> inner,
                                            const std::string& method);
 
 }  // namespace lzb

@@ -57,7 +57,9 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
                "replicate: every rank holds the whole scene | data: the scene is cut into "
                "--regions spatial regions balanced by triangle count, each rank (of each frame "
                "group) holds only its regions' triangles and renders the whole frame of them, "
-               "and the frames are composited by depth (zbuffer and raycast so far)")
+               "and the frames are composited by depth (methods other than zbuffer and raycast "
+               "render each region apart: the same --regions give the same image on any number "
+               "of ranks)")
       ->capture_default_str();
   c.add_option("--regions", a.regions,
                "--distribute data: regions the scene is cut into, the same on any number of "
@@ -162,9 +164,11 @@ void renderFrames(const RenderArgs& a, const mpi::Group& world, const mpi::SubGr
 // --distribute data: the renderer of this rank's part (loadPlan cut it).
 std::unique_ptr<Renderer> createPartRenderer(const RenderArgs& a, const RenderPlan& plan) {
   const HeldShare& held = plan.held;
-  std::unique_ptr<Renderer> inner;
-  if (held.part->scene.expandedTriangles() > 0)
-    inner = methodNamed(a.method, "--method").create(held.part->scene, plan.options);
+  std::vector<std::unique_ptr<Renderer>> inner;
+  for (const ScenePart& part : held.parts)
+    inner.push_back(part.scene.expandedTriangles() > 0
+                        ? methodNamed(a.method, "--method").create(part.scene, plan.options)
+                        : nullptr);
   return makePartRenderer(held, std::move(inner), a.method);
 }
 

@@ -70,8 +70,9 @@ void validateRenderArgs(const RenderArgs& a) {
   require(a.frames >= 1 && a.frames <= 1000000, "--frames", "must be in [1, 1000000]");
   mpi::parseCompositeStrategy(a.composite, "--composite");
   if (parseDistribution(a.distribute, "--distribute") == Distribution::kData) {
-    require(rendersParts(a.method), "--distribute data",
-            "renders with --method zbuffer or raycast so far, not " + a.method);
+    require(!methodNamed(a.method, "--method").rendersFromStore(), "--distribute data",
+            "cuts the scene into regions, each with structures of its own: a store (--tree) holds "
+            "the whole scene's (leave out --tree to build each region's tree in memory)");
     require(a.reference.empty() && !a.subsamples, "--distribute data",
             "cannot take --reference or --subsamples yet (they need the whole scene)");
   }
@@ -128,11 +129,12 @@ void loadSceneOf(const RenderArgs& a, bool talk, RenderPlan& plan) {
 // --distribute data: this rank's part, streamed where the scene can be, else cut from the loaded
 // scene; the outline stands for the whole (camera paths and clip planes come out alike).
 void loadShareOf(const RenderArgs& a, bool talk, const WorkShare& share, RenderPlan& plan) {
+  const Parts layout = partsFor(a.method);
   if (const std::optional<ChunkedScene> chunked = openChunkedScene(a.scene, !talk)) {
-    plan.held = holdStreamedShare(*chunked, a.regions, share, plan.outline);
+    plan.held = holdStreamedShare(*chunked, a.regions, share, layout, plan.outline);
   } else {
     const Scene whole = loadScene(a.scene, !talk);
-    plan.held = holdShare(whole, a.regions, share);
+    plan.held = holdShare(whole, a.regions, share, layout);
     plan.outline = outlineOf(whole);
   }
   plan.scene = sceneFromOutline(plan.outline);

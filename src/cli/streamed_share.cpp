@@ -36,12 +36,12 @@ uint32_t partSkeleton(const ChunkedScene& scene, const SceneOutline& outline, Sc
 }
 
 // Pass 2: the kept triangles, with the whole scene's IDs.
-void keepTriangles(const ChunkedScene& scene, const std::vector<bool>& keep, Mesh& to,
-                   ScenePart& part) {
-  reserveKept(keep, keep.size(), to);
+void keepTriangles(const ChunkedScene& scene, const PartOf& partOf, uint32_t meshNode,
+                   std::vector<ScenePart>& parts) {
+  reserveKept(partOf, partOf.size(), meshNode, parts);
   uint64_t id = 0;
   scene.chunks([&](const Mesh& mesh) {
-    keepMainMeshTriangles(mesh, id, keep, to, part);
+    keepMainMeshTriangles(mesh, id, partOf, meshNode, parts);
     id += mesh.size();
   });
 }
@@ -49,25 +49,27 @@ void keepTriangles(const ChunkedScene& scene, const std::vector<bool>& keep, Mes
 }  // namespace
 
 HeldShare holdStreamedShare(const ChunkedScene& scene, uint32_t regions, const WorkShare& share,
-                            SceneOutline& outline) {
+                            Parts layout, SceneOutline& outline) {
   HeldShare held;
-  std::vector<bool> keep;
+  PartOf partOf;
   Bounds nodeBox;
   {
     const std::vector<glm::dvec3> centres = centresOf(scene, nodeBox, outline);
     held.regions = regions ? regions : defaultRegions(outline.uniqueTriangles);
     held.units = centres.size();
-    keep = keepOfRank(centres, {}, held, share);
+    partOf = partOfRank(centres, {}, held, share, layout);
   }
-  held.part = std::make_unique<ScenePart>();
-  ScenePart& part = *held.part;
-  const uint32_t meshNode = partSkeleton(scene, outline, part.scene);
-  keepTriangles(scene, keep, part.scene.nodes[meshNode].mesh, part);
-  part.scene.finalize();
-  // The whole scene's boxes, as cutScene keeps them (Embree places positions relative to them).
-  if (part.scene.expandedTriangles() > 0) {
-    part.scene.nodeBounds[meshNode] = nodeBox;
-    part.scene.nodeBounds[part.scene.root] = outline.bounds;
+  held.parts.resize(partCount(held, layout));
+  uint32_t meshNode = 0;
+  for (ScenePart& part : held.parts) meshNode = partSkeleton(scene, outline, part.scene);
+  keepTriangles(scene, partOf, meshNode, held.parts);
+  for (ScenePart& part : held.parts) {
+    part.scene.finalize();
+    // The whole scene's boxes, as cutScene keeps them (Embree places positions relative to them).
+    if (part.scene.expandedTriangles() > 0) {
+      part.scene.nodeBounds[meshNode] = nodeBox;
+      part.scene.nodeBounds[part.scene.root] = outline.bounds;
+    }
   }
   return held;
 }

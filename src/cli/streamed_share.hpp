@@ -13,10 +13,10 @@
 
 namespace lzb {
 
-// This rank's share of `scene` cut into `regions` regions (0: defaultRegions), and the whole
-// scene's outline. Throws InputError when the centres would not fit in memory, or as the reader
+// This rank's share of `scene` cut into `regions` regions (0: defaultRegions) in parts of
+// `layout`, and the whole scene's outline. Throws InputError when the centres would not fit in memory, or as the reader
 // does (a file changed between the passes).
 HeldShare holdStreamedShare(const ChunkedScene& scene, uint32_t regions, const WorkShare& share,
-                            SceneOutline& outline);
+                            Parts layout, SceneOutline& outline);
 
 }  // namespace lzb

@@ -51,22 +51,28 @@ void expectSamePart(const ScenePart& streamed, const ScenePart& cut) {
 
 void expectStreamedEqualsCut(const std::string& spec) {
   const Scene whole = loadScene(spec, true);
-  for (const uint32_t regions : {1u, 5u})
-    for (const int ranks : {1, 2, 3})
-      for (int rank = 0; rank < ranks; ++rank) {
-        SCOPED_TRACE(spec + ": " + std::to_string(regions) + " regions, rank " +
-                     std::to_string(rank) + " of " + std::to_string(ranks));
-        const std::optional<ChunkedScene> chunked = openChunkedScene(spec, true);
-        ASSERT_TRUE(chunked.has_value());
-        SceneOutline outline;
-        const HeldShare streamed = holdStreamedShare(*chunked, regions, {rank, ranks}, outline);
-        const HeldShare cut = holdShare(whole, regions, {rank, ranks});
-        expectSameOutline(outline, outlineOf(whole));
-        EXPECT_EQ(streamed.regions, cut.regions);
-        EXPECT_EQ(streamed.units, cut.units);
-        EXPECT_EQ(streamed.mine, cut.mine);
-        expectSamePart(*streamed.part, *cut.part);
-      }
+  for (const Parts layout : {Parts::kOne, Parts::kPerRegion})
+    for (const uint32_t regions : {1u, 5u})
+      for (const int ranks : {1, 2, 3})
+        for (int rank = 0; rank < ranks; ++rank) {
+          SCOPED_TRACE(spec + ": " + std::to_string(regions) + " regions, rank " +
+                       std::to_string(rank) + " of " + std::to_string(ranks) +
+                       (layout == Parts::kOne ? ", one part" : ", a part per region"));
+          const std::optional<ChunkedScene> chunked = openChunkedScene(spec, true);
+          ASSERT_TRUE(chunked.has_value());
+          SceneOutline outline;
+          const HeldShare streamed =
+              holdStreamedShare(*chunked, regions, {rank, ranks}, layout, outline);
+          const HeldShare cut = holdShare(whole, regions, {rank, ranks}, layout);
+          expectSameOutline(outline, outlineOf(whole));
+          EXPECT_EQ(streamed.regions, cut.regions);
+          EXPECT_EQ(streamed.units, cut.units);
+          EXPECT_EQ(streamed.mine, cut.mine);
+          ASSERT_EQ(streamed.parts.size(), cut.parts.size());
+          EXPECT_EQ(cut.parts.size(), layout == Parts::kOne ? 1u : cut.mine.size());
+          for (size_t p = 0; p < cut.parts.size(); ++p)
+            expectSamePart(streamed.parts[p], cut.parts[p]);
+        }
 }
 
 TEST(StreamedShare, APlyFileStreamedGivesTheShareCutFromTheLoadedScene) {

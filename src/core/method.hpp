@@ -49,6 +49,8 @@ class Method {
   virtual std::optional<SceneOutline> storedOutline(const std::string& /*scene*/) const {
     return std::nullopt;
   }
+  // Whether the method renders from such a file (storedOutline then gives its outline).
+  virtual bool rendersFromStore() const { return false; }
   // A renderer with the validated options; scene: finalized, outlives the renderer.
   virtual std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const = 0;
 };

@@ -134,19 +134,26 @@ struct PartBuilder {
 
 }  // namespace
 
-void reserveKept(const std::vector<bool>& keep, uint64_t count, Mesh& to) {
-  uint64_t kept = 0;
-  for (uint64_t t = 0; t < count && t < keep.size(); ++t) kept += keep[t];
-  to.positions.reserve(to.positions.size() + 3 * kept);
-  to.normals.reserve(to.normals.size() + kept);
-  to.colors.reserve(to.colors.size() + kept);
+void reserveKept(const PartOf& partOf, uint64_t count, uint32_t meshNode,
+                 std::vector<ScenePart>& parts) {
+  std::vector<uint64_t> kept(parts.size(), 0);
+  for (uint64_t t = 0; t < count && t < partOf.size(); ++t)
+    if (partOf[t] != kNoPart) ++kept[partOf[t]];
+  for (size_t p = 0; p < parts.size(); ++p) {
+    Mesh& to = parts[p].scene.nodes[meshNode].mesh;
+    to.positions.reserve(to.positions.size() + 3 * kept[p]);
+    to.normals.reserve(to.normals.size() + kept[p]);
+    to.colors.reserve(to.colors.size() + kept[p]);
+  }
 }
 
-void keepMainMeshTriangles(const Mesh& from, uint64_t firstId, const std::vector<bool>& keep,
-                           Mesh& to, ScenePart& part) {
+void keepMainMeshTriangles(const Mesh& from, uint64_t firstId, const PartOf& partOf,
+                           uint32_t meshNode, std::vector<ScenePart>& parts) {
   for (size_t t = 0; t < from.size(); ++t) {
     const uint64_t id = firstId + t;
-    if (id >= keep.size() || !keep[id]) continue;
+    if (id >= partOf.size() || partOf[id] == kNoPart) continue;
+    ScenePart& part = parts[partOf[id]];
+    Mesh& to = part.scene.nodes[meshNode].mesh;
     to.positions.insert(to.positions.end(), from.positions.begin() + ptrdiff_t(3 * t),
                         from.positions.begin() + ptrdiff_t(3 * t + 3));
     to.normals.push_back(from.normals[t]);
@@ -217,12 +224,10 @@ SceneUnits sceneUnits(const Scene& scene, uint32_t regions) {
   return units;
 }
 
-ScenePart cutScene(const Scene& whole, const SceneUnits& units, const std::vector<bool>& keep) {
-  if (keep.size() != units.size())
-    throw std::invalid_argument("cutScene: keep has " + std::to_string(keep.size()) +
-                                " entries for " + std::to_string(units.size()) + " units");
-  ScenePart part;
-  Scene& s = part.scene;
+namespace {
+
+// A part's frame: the whole scene's settings and nodes (names only), nothing kept yet.
+void startPart(const Scene& whole, Scene& s) {
   s.source = whole.source;
   s.light = whole.light;
   s.camera = whole.camera;
@@ -233,24 +238,46 @@ ScenePart cutScene(const Scene& whole, const SceneUnits& units, const std::vecto
   s.root = whole.root;
   s.nodes.resize(whole.nodes.size());
   for (size_t n = 0; n < whole.nodes.size(); ++n) s.nodes[n].name = whole.nodes[n].name;
-  PartBuilder build{whole, part, {}, {}, std::vector<bool>(whole.nodes.size(), false)};
-  build.copied[whole.root] = true;  // the root is cut, never copied (no instance reaches it)
-  if (units.meshTriangles > 0) {
-    Mesh& to = s.nodes[build.nodeAt(units.meshPath)].mesh;
-    reserveKept(keep, units.meshTriangles, to);
-    keepMainMeshTriangles(nodeAtPath(whole, units.meshPath).mesh, 0, keep, to, part);
-  }
-  for (size_t u = 0; u < units.opened.size(); ++u)
-    if (keep[units.meshTriangles + u]) build.add(units.opened[u]);
+}
+
+// Opened nodes and the root keep the whole scene's boxes (supersets of theirs): what is placed
+// relative to a node's box (Embree's recentred positions) then comes out bit for bit alike.
+void finishPart(const Scene& whole, const PartBuilder& build, Scene& s) {
   s.finalize();
-  // Opened nodes and the root keep the whole scene's boxes (supersets of theirs): what is placed
-  // relative to a node's box (Embree's recentred positions) then comes out bit for bit alike.
-  if (s.expandedTriangles() > 0) {
-    s.nodeBounds[s.root] = whole.nodeBounds[whole.root];
-    for (const auto& [made, original] : build.openedOriginal)
-      s.nodeBounds[made] = whole.nodeBounds[original];
+  if (s.expandedTriangles() == 0) return;
+  s.nodeBounds[s.root] = whole.nodeBounds[whole.root];
+  for (const auto& [made, original] : build.openedOriginal)
+    s.nodeBounds[made] = whole.nodeBounds[original];
+}
+
+}  // namespace
+
+std::vector<ScenePart> cutScene(const Scene& whole, const SceneUnits& units, const PartOf& partOf,
+                                uint32_t parts) {
+  if (partOf.size() != units.size())
+    throw std::invalid_argument("cutScene: partOf has " + std::to_string(partOf.size()) +
+                                " entries for " + std::to_string(units.size()) + " units");
+  std::vector<ScenePart> cut(parts);
+  std::vector<PartBuilder> builds;
+  builds.reserve(parts);
+  uint32_t meshNode = whole.root;
+  for (ScenePart& part : cut) {
+    startPart(whole, part.scene);
+    builds.push_back({whole, part, {}, {}, std::vector<bool>(whole.nodes.size(), false)});
+    builds.back().copied[whole.root] = true;  // the root is cut, never copied (no instance reaches it)
+    // First in every part: the main mesh's node has one index in all of them.
+    if (units.meshTriangles > 0) meshNode = builds.back().nodeAt(units.meshPath);
   }
-  return part;
+  if (units.meshTriangles > 0) {
+    reserveKept(partOf, units.meshTriangles, meshNode, cut);
+    keepMainMeshTriangles(nodeAtPath(whole, units.meshPath).mesh, 0, partOf, meshNode, cut);
+  }
+  for (size_t u = 0; u < units.opened.size(); ++u) {
+    const uint32_t p = partOf[units.meshTriangles + u];
+    if (p != kNoPart) builds[p].add(units.opened[u]);
+  }
+  for (uint32_t p = 0; p < parts; ++p) finishPart(whole, builds[p], cut[p].scene);
+  return cut;
 }
 
 }  // namespace lzb

@@ -72,15 +72,24 @@ struct ScenePart {
   uint64_t units = 0;  // units kept
 };
 
-// The part of `whole` made of the units u with keep[u] (units from sceneUnits(whole, ...)).
-ScenePart cutScene(const Scene& whole, const SceneUnits& units, const std::vector<bool>& keep);
+// Which part each unit goes to: an index below the number of parts, or kNoPart.
+using PartOf = std::vector<uint32_t>;
+constexpr uint32_t kNoPart = ~uint32_t(0);
 
-// The main mesh's kept units, whole (cutScene) or chunk by chunk (a streamed scene): appends the
-// triangles t of `from` with keep[firstId + t] to `to`, with the whole scene's IDs firstId + t.
-void keepMainMeshTriangles(const Mesh& from, uint64_t firstId, const std::vector<bool>& keep,
-                           Mesh& to, ScenePart& part);
-// Room in `to` for the triangles keep marks among its first `count`.
-void reserveKept(const std::vector<bool>& keep, uint64_t count, Mesh& to);
+// The `parts` parts of `whole` made of the units u with partOf[u] == p (units from
+// sceneUnits(whole, ...)), units in the whole scene's order in each.
+std::vector<ScenePart> cutScene(const Scene& whole, const SceneUnits& units, const PartOf& partOf,
+                                uint32_t parts);
+
+// The main mesh's units, whole (cutScene) or chunk by chunk (a streamed scene): appends each
+// triangle t of `from` with p = partOf[firstId + t] != kNoPart to node `meshNode`'s mesh of
+// parts[p], with the whole scene's ID firstId + t.
+void keepMainMeshTriangles(const Mesh& from, uint64_t firstId, const PartOf& partOf,
+                           uint32_t meshNode, std::vector<ScenePart>& parts);
+// Room in node `meshNode`'s mesh of each part for the triangles partOf sends it among the first
+// `count`.
+void reserveKept(const PartOf& partOf, uint64_t count, uint32_t meshNode,
+                 std::vector<ScenePart>& parts);
 
 // The world centre of triangle t of `mesh` placed by `toWorld`: a main-mesh unit's centre, the
 // same whether the mesh was loaded whole or is streamed (src/cli/streamed_share.hpp).

@@ -36,10 +36,11 @@ glm::dvec3 corner(const Scene& scene, uint64_t id, int k) {
   return glm::dvec3(ref->transform * glm::dvec4(glm::dvec3(p), 1.0));
 }
 
-std::vector<bool> pattern(size_t n, bool odd) {
-  std::vector<bool> keep(n);
-  for (size_t i = 0; i < n; ++i) keep[i] = (i % 2 == 1) == odd;
-  return keep;
+// Part 0 holds the odd units (odd) or the even ones.
+PartOf pattern(size_t n, bool odd) {
+  PartOf partOf(n);
+  for (size_t i = 0; i < n; ++i) partOf[i] = (i % 2 == 1) == odd ? 0 : kNoPart;
+  return partOf;
 }
 
 TEST(ScenePart, UnitsAreTheRootsTrianglesThenInstancesOpenedWhileLarge) {
@@ -64,7 +65,7 @@ TEST(ScenePart, UnitsAreTheRootsTrianglesThenInstancesOpenedWhileLarge) {
 TEST(ScenePart, APartKeepsItsUnitsWithTheWholeScenesIds) {
   const Scene whole = mixedScene();
   const SceneUnits units = sceneUnits(whole, 1);
-  const ScenePart part = cutScene(whole, units, pattern(units.size(), true));
+  const ScenePart part = cutScene(whole, units, pattern(units.size(), true), 1)[0];
   EXPECT_EQ(part.units, 4u);
   EXPECT_EQ(part.ids.size(), part.scene.expandedTriangles());
   const std::vector<uint64_t> expected = {1, 3, 6, 7, 10, 11};
@@ -91,9 +92,22 @@ TEST(ScenePart, PartsOfComplementaryUnitsHoldEveryIdOnce) {
   const Scene whole = mixedScene();
   const SceneUnits units = sceneUnits(whole, 3);
   std::multiset<uint64_t> ids;
+  PartOf both(units.size());
+  for (size_t u = 0; u < units.size(); ++u) both[u] = uint32_t(u % 2);
+  const std::vector<ScenePart> parts = cutScene(whole, units, both, 2);
+  ASSERT_EQ(parts.size(), 2u);
   for (bool odd : {false, true}) {
-    const ScenePart part = cutScene(whole, units, pattern(units.size(), odd));
-    for (uint64_t local = 0; local < part.ids.size(); ++local) ids.insert(part.ids.global(local));
+    const ScenePart& part = parts[odd];
+    const ScenePart alone = cutScene(whole, units, pattern(units.size(), odd), 1)[0];
+    ASSERT_EQ(part.ids.size(), alone.ids.size()) << "one cut into two parts is two cuts";
+    EXPECT_EQ(part.units, alone.units);
+    EXPECT_EQ(part.scene.nodes.size(), alone.scene.nodes.size());
+    for (uint64_t local = 0; local < part.ids.size(); ++local) {
+      ids.insert(part.ids.global(local));
+      EXPECT_EQ(part.ids.global(local), alone.ids.global(local));
+      for (int k = 0; k < 3; ++k)
+        EXPECT_EQ(corner(part.scene, local, k), corner(alone.scene, local, k));
+    }
   }
   ASSERT_EQ(ids.size(), whole.expandedTriangles());
   uint64_t next = 0;
@@ -103,11 +117,11 @@ TEST(ScenePart, PartsOfComplementaryUnitsHoldEveryIdOnce) {
 TEST(ScenePart, AnEmptyPartHoldsNothing) {
   const Scene whole = mixedScene();
   const SceneUnits units = sceneUnits(whole, 1);
-  const ScenePart part = cutScene(whole, units, std::vector<bool>(units.size(), false));
+  const ScenePart part = cutScene(whole, units, PartOf(units.size(), kNoPart), 1)[0];
   EXPECT_EQ(part.scene.expandedTriangles(), 0u);
   EXPECT_EQ(part.scene.uniqueTriangles(), 0u);
   EXPECT_EQ(part.ids.size(), 0u);
-  EXPECT_THROW(cutScene(whole, units, std::vector<bool>(units.size() - 1, true)),
+  EXPECT_THROW(cutScene(whole, units, PartOf(units.size() - 1, 0), 1),
                std::invalid_argument);
 }
 

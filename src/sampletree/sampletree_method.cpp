@@ -124,6 +124,7 @@ class SampleTreeMethod : public Method {
             "built from " + o.source + ", not from " + scene + " (name that scene to render it)");
     return o;
   }
+  bool rendersFromStore() const override { return !st_.treePath.empty(); }
   std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const override {
     return std::make_unique<sampletree::SampleTreeRenderer>(scene, options, st_);
   }
