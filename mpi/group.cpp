@@ -22,6 +22,15 @@ Group Group::world() {
   return g;
 }
 
+int ranksOnMachine(const Group& g) {
+  MPI_Comm local;
+  LZB_MPI_CALL(MPI_Comm_split_type(g.comm, MPI_COMM_TYPE_SHARED, g.rank, MPI_INFO_NULL, &local));
+  int size = 1;
+  LZB_MPI_CALL(MPI_Comm_size(local, &size));
+  LZB_MPI_CALL(MPI_Comm_free(&local));
+  return size;
+}
+
 SubGroups::SubGroups(const Group& parent, int count)
     : group_(parent), count_(count), parentSize_(parent.size) {
   if (count <= 1) return;

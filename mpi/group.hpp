@@ -26,6 +26,9 @@ struct Group {
   void barrier() const { LZB_MPI_CALL(MPI_Barrier(comm)); }
 };
 
+// The ranks of `g` on this rank's machine (those sharing its memory), this one included.
+int ranksOnMachine(const Group& g);
+
 // The ranks of `parent` cut into `count` contiguous groups of (nearly) equal size; this rank's
 // group as a Group of its own (its communicator freed with this object). count 1: the parent.
 class SubGroups {

@@ -13,11 +13,13 @@ namespace lzb {
 Distribution parseDistribution(const std::string& text, const std::string& field) {
   if (text == "replicate") return Distribution::kReplicate;
   if (text == "data") return Distribution::kData;
-  throw InputError(field + ": unknown distribution '" + text + "' (replicate | data)");
+  if (text == "auto") return Distribution::kAuto;
+  throw InputError(field + ": unknown distribution '" + text + "' (replicate | data | auto)");
 }
 
-uint32_t defaultRegions(uint64_t uniqueTriangles) {
-  return uint32_t(std::clamp<uint64_t>(uniqueTriangles >> 16, 16, 4096));
+uint32_t defaultRegions(uint64_t uniqueTriangles, Parts layout) {
+  const int shift = layout == Parts::kOne ? 16 : 20;
+  return uint32_t(std::clamp<uint64_t>(uniqueTriangles >> shift, 16, 4096));
 }
 
 PartOf partOfRank(std::span<const glm::dvec3> centres, std::span<const uint64_t> triangles,
@@ -29,6 +31,7 @@ PartOf partOfRank(std::span<const glm::dvec3> centres, std::span<const uint64_t>
   held.mine = regionsOfRank(regionTriangles, share);
   held.layout = layout;
   std::sort(held.mine.begin(), held.mine.end());
+  for (uint32_t r : held.mine) held.triangles += regionTriangles[r];
   std::vector<uint32_t> partOfRegion(held.regions, kNoPart);
   for (size_t k = 0; k < held.mine.size(); ++k)
     partOfRegion[held.mine[k]] = layout == Parts::kOne ? 0 : uint32_t(k);
@@ -47,7 +50,7 @@ uint32_t partCount(const HeldShare& held, Parts layout) {
 
 HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share, Parts layout) {
   HeldShare held;
-  held.regions = regions ? regions : defaultRegions(whole.uniqueTriangles());
+  held.regions = regions ? regions : defaultRegions(whole.uniqueTriangles(), layout);
   const SceneUnits units = sceneUnits(whole, held.regions);
   held.units = units.size();
   PartOf partOf;

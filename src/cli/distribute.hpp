@@ -23,22 +23,26 @@
 
 namespace lzb {
 
-enum class Distribution { kReplicate, kData };
+// kAuto: data when a streamed scene would not fit replicated in some rank's memory (render_setup).
+enum class Distribution { kReplicate, kData, kAuto };
 // Throws InputError naming `field` on an unknown name.
 Distribution parseDistribution(const std::string& text, const std::string& field);
 
-// The regions of a scene when --regions is 0: one per 2^16 unique triangles, at least 16 and at
-// most 4096, from the scene's size alone (never the rank count).
-uint32_t defaultRegions(uint64_t uniqueTriangles);
-
 // How a rank's regions are held: as one part (exact methods) or one part per region.
 enum class Parts { kOne, kPerRegion };
+
+// The regions of a scene when --regions is 0, from the scene's size alone (never the rank
+// count), at least 16 and at most 4096: one per 2^16 unique triangles held as one part, one per
+// 2^20 held a part per region (each region then costs a renderer's whole frame pass:
+// runs/distribute/README.md).
+uint32_t defaultRegions(uint64_t uniqueTriangles, Parts layout);
 
 // What a rank holds of the scene.
 struct HeldShare {
   uint32_t regions = 0;          // the scene's regions
   uint64_t units = 0;            // the scene's units (src/core/scene_part.hpp)
   std::vector<uint32_t> mine;    // the regions this rank holds, in increasing order
+  uint64_t triangles = 0;        // their triangles (expanded)
   Parts layout = Parts::kOne;
   std::vector<ScenePart> parts;  // their units: one part, or one per region of `mine`
 };
@@ -53,7 +57,7 @@ HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share
 
 // Which of this rank's parts each unit goes to, given the units' world centres and triangles
 // (empty: one each), with held.regions set: cuts the regions (splitIntoRegions), deals them
-// (regionsOfRank) and sets held.mine and held.layout. The one cut of both the loaded and the
+// (regionsOfRank) and sets held.mine, held.triangles and held.layout. The one cut of both the loaded and the
 // streamed scene (streamed_share.hpp).
 PartOf partOfRank(std::span<const glm::dvec3> centres, std::span<const uint64_t> triangles,
                   HeldShare& held, const WorkShare& share, Parts layout);

@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
   lzb::keepFreedMemory();
   lzb::mpi::Session session(&argc, &argv, wantsNodeServer(argc, argv));
   const lzb::mpi::Group g = lzb::mpi::Group::world();
+  lzb::setProcessesOnMachine(lzb::mpi::ranksOnMachine(g));  // they share its memory
   const std::string commandLine = joinArgs(argc, argv);
 
   CLI::App app{"lzb: output-sensitive parallel rendering of highly complex scenes"};

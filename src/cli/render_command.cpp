@@ -59,11 +59,14 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
                "group) holds only its regions' triangles and renders the whole frame of them, "
                "and the frames are composited by depth (methods other than zbuffer and raycast "
                "render each region apart: the same --regions give the same image on any number "
-               "of ranks)")
+               "of ranks) | auto: data when a binary PLY or builtin:landscape would not fit "
+               "replicated in some rank's memory (estimated), else replicate")
       ->capture_default_str();
   c.add_option("--regions", a.regions,
                "--distribute data: regions the scene is cut into, the same on any number of "
-               "ranks (0: one per 65,536 unique triangles, 16 to 4096)")
+               "ranks (0: from the scene's size, 16 to 4096: one per 65,536 unique triangles for "
+               "zbuffer and raycast, one per 1,048,576 for the methods that render each region "
+               "apart)")
       ->capture_default_str();
   c.add_option("--threads,-t", a.threads, "threads per rank (0: the cores this rank owns)")
       ->capture_default_str();
@@ -172,6 +175,17 @@ std::unique_ptr<Renderer> createPartRenderer(const RenderArgs& a, const RenderPl
   return makePartRenderer(held, std::move(inner), a.method);
 }
 
+// --distribute auto: data when the whole scene would not fit replicated on some rank (every rank
+// takes the same mode).
+Distribution resolveDistribution(const RenderArgs& a, const mpi::Group& g) {
+  const Distribution asked = parseDistribution(a.distribute, "--distribute");
+  if (asked != Distribution::kAuto) return asked;
+  int fits = 1;
+  mpi::agree(g, [&] { fits = replicaFits(a) ? 1 : 0; });
+  LZB_MPI_CALL(MPI_Allreduce(MPI_IN_PLACE, &fits, 1, MPI_INT, MPI_MIN, g.comm));
+  return fits ? Distribution::kReplicate : Distribution::kData;
+}
+
 }  // namespace
 
 int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& commandLine) {
@@ -190,10 +204,11 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
     if (g.root()) checkOutput(a.out);
   });
   const mpi::SubGroups groups(g, a.frameGroups);
+  const Distribution distribution = resolveDistribution(a, g);
   mpi::agree(g, [&] {
-    loadPlan(a, talk, plan, WorkShare{groups.group().rank, groups.group().size});
+    loadPlan(a, talk, plan, WorkShare{groups.group().rank, groups.group().size}, distribution);
     Stopwatch setupClock;
-    if (parseDistribution(a.distribute, "--distribute") == Distribution::kData)
+    if (distribution == Distribution::kData)
       renderer = createPartRenderer(a, plan);
     else
       renderer = methodNamed(a.method, "--method").create(plan.scene, plan.options);
@@ -208,6 +223,7 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
 
   Report report(a, plan.options, g, plan.outline, plan.sceneLoaded, commandLine);
   report.setMethod(*renderer, judge.reference.get());
+  report.setDistribution(distribution == Distribution::kData ? "data" : "replicate");
   report.setSetup(plan.loadSeconds, setupSeconds, methodSetup);
   if (judge.witness) report.setWitness(*judge.witness);
   try {

@@ -8,6 +8,7 @@
 
 #include "mpi/composite.hpp"
 #include "src/cli/distribute.hpp"
+#include "src/cli/memory_estimate.hpp"
 #include "src/cli/methods.hpp"
 #include "src/cli/streamed_share.hpp"
 #include "src/core/error.hpp"
@@ -110,8 +111,20 @@ Camera RenderPlan::camera(int f) const {
 
 namespace {
 
+// This rank's estimated peak holding `triangles` unique triangles: the method's structures and a
+// reference's.
+uint64_t rankPeakBytes(const RenderArgs& a, uint64_t triangles) {
+  return methodPeakBytes(a.method, triangles) +
+         (a.reference.empty() ? 0 : methodPeakBytes(a.reference, triangles));
+}
+
+std::string holding(uint64_t triangles, const RenderArgs& a) {
+  return "holding " + std::to_string(triangles) + " triangles with --method " + a.method +
+         (a.reference.empty() ? "" : " and --reference " + a.reference);
+}
+
 // The scene, or the outline standing for it when the method holds every triangle and no
-// reference needs them.
+// reference needs them. A streamed scene's size is known, and refused, before it is read.
 void loadSceneOf(const RenderArgs& a, bool talk, RenderPlan& plan) {
   std::optional<SceneOutline> stored;
   if (a.reference.empty()) stored = methodNamed(a.method, "--method").storedOutline(a.scene);
@@ -121,30 +134,55 @@ void loadSceneOf(const RenderArgs& a, bool talk, RenderPlan& plan) {
     plan.sceneLoaded = false;
     return;
   }
+  if (const std::optional<ChunkedScene> chunked = openChunkedScene(a.scene, true))
+    requireEstimate(rankPeakBytes(a, chunked->triangles), a.scene,
+                    "every rank " + holding(chunked->triangles, a),
+                    ": cut it across ranks with --distribute data");
   plan.scene = loadScene(a.scene, !talk);
   require(plan.scene.expandedTriangles() > 0, a.scene, "the scene has no triangles");
+  requireEstimate(rankPeakBytes(a, plan.scene.uniqueTriangles()), a.scene,
+                  "every rank " + holding(plan.scene.uniqueTriangles(), a));
   plan.outline = outlineOf(plan.scene);
 }
 
 // --distribute data: this rank's part, streamed where the scene can be, else cut from the loaded
-// scene; the outline stands for the whole (camera paths and clip planes come out alike).
+// scene; the outline stands for the whole (camera paths and clip planes come out alike). The
+// share is refused before its triangles are kept when it would not fit.
 void loadShareOf(const RenderArgs& a, bool talk, const WorkShare& share, RenderPlan& plan) {
   const Parts layout = partsFor(a.method);
+  const auto refuse = [&](uint64_t triangles, const HeldShare& held) {
+    requireEstimate(rankPeakBytes(a, triangles), a.scene,
+                    "rank " + std::to_string(share.rank) + " of " + std::to_string(share.size) +
+                        " " + holding(triangles, a) + " (" + std::to_string(held.mine.size()) +
+                        " of " + std::to_string(held.regions) + " regions)",
+                    ": more ranks hold smaller shares");
+  };
   if (const std::optional<ChunkedScene> chunked = openChunkedScene(a.scene, !talk)) {
-    plan.held = holdStreamedShare(*chunked, a.regions, share, layout, plan.outline);
+    plan.held = holdStreamedShare(*chunked, a.regions, share, layout, plan.outline,
+                                  [&](const HeldShare& held) { refuse(held.triangles, held); });
   } else {
     const Scene whole = loadScene(a.scene, !talk);
     plan.held = holdShare(whole, a.regions, share, layout);
     plan.outline = outlineOf(whole);
+    uint64_t unique = 0;
+    for (const ScenePart& part : plan.held.parts) unique += part.scene.uniqueTriangles();
+    refuse(unique, plan.held);
   }
   plan.scene = sceneFromOutline(plan.outline);
 }
 
 }  // namespace
 
-void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan, const WorkShare& share) {
+bool replicaFits(const RenderArgs& a) {
+  if (!a.reference.empty() || methodNamed(a.method, "--method").rendersFromStore()) return true;
+  const std::optional<ChunkedScene> chunked = openChunkedScene(a.scene, true);
+  return !chunked || rankPeakBytes(a, chunked->triangles) <= usableMemoryBytes();
+}
+
+void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan, const WorkShare& share,
+              Distribution distribution) {
   Stopwatch loadClock;
-  if (parseDistribution(a.distribute, "--distribute") == Distribution::kData)
+  if (distribution == Distribution::kData)
     loadShareOf(a, talk, share, plan);
   else
     loadSceneOf(a, talk, plan);

@@ -20,6 +20,8 @@ class Report {
  public:
   Report(const RenderArgs& args, const RenderOptions& options, const mpi::Group& g,
          const SceneOutline& scene, bool sceneLoaded, const std::string& commandLine);
+  // The distribution the run used (--distribute auto resolved): "replicate" or "data".
+  void setDistribution(const std::string& used) { json_["distribution"] = used; }
   void setMethod(const Renderer& method, const Renderer* reference);
   // Load and set-up wall times, and the method's own set-up figures (mpi::gatherStats).
   void setSetup(double loadSeconds, double setupSeconds, nlohmann::json methodSetup);

@@ -2,7 +2,7 @@
 
 #include <vector>
 
-#include "src/core/system.hpp"
+#include "src/cli/memory_estimate.hpp"
 
 namespace lzb {
 
@@ -10,8 +10,8 @@ namespace {
 
 // Pass 1: the triangles' world centres and the node's own bounds; the outline from them.
 std::vector<glm::dvec3> centresOf(const ChunkedScene& scene, Bounds& box, SceneOutline& outline) {
-  requireMemory(32 * scene.triangles, scene.base.source,
-                "cutting the scene into regions (--distribute data)");
+  requireEstimate(streamedCutBytes(scene.triangles), scene.base.source,
+                  "cutting the scene into regions (--distribute data)");
   std::vector<glm::dvec3> centres;
   centres.reserve(scene.triangles);
   const LoadStats stats = scene.chunks([&](const Mesh& mesh) {
@@ -49,16 +49,18 @@ void keepTriangles(const ChunkedScene& scene, const PartOf& partOf, uint32_t mes
 }  // namespace
 
 HeldShare holdStreamedShare(const ChunkedScene& scene, uint32_t regions, const WorkShare& share,
-                            Parts layout, SceneOutline& outline) {
+                            Parts layout, SceneOutline& outline,
+                            const std::function<void(const HeldShare&)>& beforeKeeping) {
   HeldShare held;
   PartOf partOf;
   Bounds nodeBox;
   {
     const std::vector<glm::dvec3> centres = centresOf(scene, nodeBox, outline);
-    held.regions = regions ? regions : defaultRegions(outline.uniqueTriangles);
+    held.regions = regions ? regions : defaultRegions(outline.uniqueTriangles, layout);
     held.units = centres.size();
     partOf = partOfRank(centres, {}, held, share, layout);
   }
+  if (beforeKeeping) beforeKeeping(held);
   held.parts.resize(partCount(held, layout));
   uint32_t meshNode = 0;
   for (ScenePart& part : held.parts) meshNode = partSkeleton(scene, outline, part.scene);

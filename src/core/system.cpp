@@ -69,15 +69,21 @@ uint64_t addressSpaceLeft() {
 
 std::string mib(uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20); }
 
+int processesOnMachine = 1;
+
 }  // namespace
 
-uint64_t usableMemoryBytes() { return std::min(physicalMemoryBytes(), addressSpaceLeft()); }
+void setProcessesOnMachine(int processes) { processesOnMachine = std::max(processes, 1); }
+
+uint64_t usableMemoryBytes() {
+  return std::min(physicalMemoryBytes() / uint64_t(processesOnMachine), addressSpaceLeft());
+}
 
 void requireMemory(uint64_t bytes, const std::string& where, const std::string& what) {
   const uint64_t usable = usableMemoryBytes();
   if (bytes <= usable) return;
   throw InputError(where + ": " + what + " needs " + mib(bytes) + " MiB, more than the " +
-                   mib(usable) + " MiB this process may use (physical memory, ulimit -v)");
+                   mib(usable) + " MiB this process may use (its share of physical memory, ulimit -v)");
 }
 
 }  // namespace lzb

@@ -15,11 +15,15 @@ bool keepFreedMemory();
 // Sets the thread count for OpenMP and (through LP_NUM_THREADS) llvmpipe; call before rendering.
 void useThreads(int threads);
 
-// Bytes this process may still allocate: the least of physical memory and what the address-space
-// limit (RLIMIT_AS, `ulimit -v`) leaves above the address space already mapped.
+// The processes of this job on this machine (MPI ranks on one node), which share its physical
+// memory; 1 until set (once, at start).
+void setProcessesOnMachine(int processes);
+// Bytes this process may still allocate: the least of its share of physical memory and what the
+// address-space limit (RLIMIT_AS, `ulimit -v`) leaves above the address space already mapped.
 uint64_t usableMemoryBytes();
 // Throws InputError "<where>: <what> needs N MiB, more than the M MiB this process may use
-// (physical memory, ulimit -v)" when `bytes` exceed usableMemoryBytes(). Call before allocating.
+// (its share of physical memory, ulimit -v)" when `bytes` exceed usableMemoryBytes(). Call
+// before allocating.
 void requireMemory(uint64_t bytes, const std::string& where, const std::string& what);
 
 }  // namespace lzb

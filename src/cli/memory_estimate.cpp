@@ -1,0 +1,49 @@
+#include "src/cli/memory_estimate.hpp"
+
+#include <map>
+
+#include "src/core/error.hpp"
+#include "src/core/system.hpp"
+
+namespace lzb {
+
+namespace {
+
+struct Model {
+  uint64_t bytesPerTriangle;
+  uint64_t baseMiB;
+};
+
+// runs/distribute/memory_model.csv (2 threads, 640x480): slopes and bases, rounded up.
+const std::map<std::string, Model>& models() {
+  static const std::map<std::string, Model> m = {
+      {"zbuffer", {96, 180}}, {"raycast", {200, 80}}, {"lzb", {256, 80}},
+      {"hybrid", {280, 110}}, {"rzb", {232, 90}},     {"surfels", {80, 100}},
+      {"sqrt5", {88, 100}},   {"sampletree", {200, 80}}};
+  return m;
+}
+
+}  // namespace
+
+bool hasMemoryModel(const std::string& method) { return models().count(method) > 0; }
+
+uint64_t methodPeakBytes(const std::string& method, uint64_t triangles) {
+  const auto found = models().find(method);
+  // A method without a model is estimated as the costliest one.
+  const Model m = found != models().end() ? found->second : Model{280, 180};
+  return (m.baseMiB << 20) + m.bytesPerTriangle * triangles;
+}
+
+uint64_t streamedCutBytes(uint64_t triangles) { return triangles * (32 + 4); }
+
+void requireEstimate(uint64_t bytes, const std::string& scene, const std::string& what,
+                     const std::string& hint) {
+  const uint64_t usable = usableMemoryBytes();
+  if (bytes <= usable) return;
+  const auto mib = [](uint64_t b) { return std::to_string((b + (1u << 20) - 1) >> 20); };
+  throw InputError(scene + ": " + what + " needs an estimated " + mib(bytes) +
+                   " MiB, more than the " + mib(usable) +
+                   " MiB this process may use (its share of physical memory, ulimit -v)" + hint);
+}
+
+}  // namespace lzb

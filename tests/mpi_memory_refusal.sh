@@ -1,0 +1,55 @@
+#!/usr/bin/env bash
+# A rank whose estimated peak exceeds the memory it may use (ulimit -v here) refuses before it
+# holds the scene, and the whole job ends with exit status 2, the estimate, and nothing written:
+# one rank limited, every rank limited, and a data-mode share too large for its rank.
+# usage: mpi_memory_refusal.sh LZB_BINARY WORK_DIR MPIEXEC
+set -euo pipefail
+lzb="$1" work="$2" mpiexec="$3"
+rm -rf "$work" && mkdir -p "$work"
+out="$work/out"
+scene="builtin:landscape?objects=200000"  # 4.8 M triangles: the hybrid's estimate is 1.4 GiB
+run=(render "$scene" --method hybrid --quiet --threads 1 --frames 1 --out "$out")
+# Runs lzb under an address-space limit: limit.sh KIB ARGS...
+cat >"$work/limit.sh" <<'SH'
+#!/bin/sh
+ulimit -v "$1"
+shift
+exec "$@"
+SH
+chmod +x "$work/limit.sh"
+limit=("$work/limit.sh")
+
+expect_refusal() {  # name, what the message must say, then the mpiexec arguments
+  local name="$1" says="$2"
+  shift 2
+  local start=$SECONDS status=0
+  msg=$(timeout 120 "$mpiexec" --oversubscribe "$@" 2>&1) || status=$?
+  local took=$((SECONDS - start))
+  [ "$status" -eq 2 ] || { echo "FAIL: $name exited $status (want 2): $msg"; exit 1; }
+  [ "$took" -le 30 ] || { echo "FAIL: $name took $took s"; exit 1; }
+  grep -q "needs an estimated" <<<"$msg" || { echo "FAIL: $name gives no estimate: $msg"; exit 1; }
+  grep -q -- "$says" <<<"$msg" || { echo "FAIL: $name does not say '$says': $msg"; exit 1; }
+  [ ! -e "$out" ] || { echo "FAIL: $name wrote $out"; exit 1; }
+  echo "ok: $name exited 2 in $took s"
+}
+
+# 1.1 GiB of address space: the process starts, the whole scene's estimate does not fit.
+one=("${limit[@]}" 1200000 "$lzb" "${run[@]}")
+expect_refusal "rank 1 limited" "rank 1: error: $scene: every rank holding 4832768" \
+  -n 1 "$lzb" "${run[@]}" : -n 1 "${one[@]}"
+expect_refusal "every rank limited" "every rank holding" -n 2 "${one[@]}"
+# Under data, each of 2 ranks would hold half; with 0.95 GiB that still does not fit.
+share=("${limit[@]}" 1000000 "$lzb" "${run[@]}" --distribute data)
+expect_refusal "a data share too large" "rank 0 of 2 holding" -n 2 "${share[@]}"
+
+# The capacity case: under 1.1 GiB a rank refuses raycast's whole 4.8 M triangles (1.0 GiB
+# estimated, above the limit less the process's own mapping), so --distribute auto cuts the scene
+# across 2 ranks, each under the same limit, and the image is that of 1 rank without the limit.
+exact=(render "$scene" --method raycast --quiet --threads 1 --frames 1 --width 160 --height 120)
+"$lzb" "${exact[@]}" --out "$work/whole" >/dev/null
+timeout 120 "$mpiexec" --oversubscribe -n 2 "${limit[@]}" 1150000 "$lzb" "${exact[@]}" \
+  --distribute auto --out "$work/auto" >/dev/null
+grep -q '"distribution": "data"' "$work/auto/report.json" || { echo "FAIL: auto did not cut"; exit 1; }
+cmp "$work/whole/frame_0000.exr" "$work/auto/frame_0000.exr" ||
+  { echo "FAIL: the cut scene's image differs"; exit 1; }
+echo "ok: auto cut the scene across 2 limited ranks, the unlimited image"
