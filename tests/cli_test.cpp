@@ -330,6 +330,25 @@ TEST(Info, CountsInstancedTrianglesAndBuildsOctrees) {
   EXPECT_GT(info["memory"]["scene_bytes"].get<double>(), 0.0);
 }
 
+TEST(Info, EstimatesEachRanksPeakForItsShare) {
+  const std::string scene = "info 'builtin:city?blocks=3' --json --quiet --method raycast ";
+  const nlohmann::json whole = nlohmann::json::parse(runLzb(scene + "--ranks 2").output);
+  const RunResult r = runLzb(scene + "--ranks 3 --distribute data --regions 7");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json cut = nlohmann::json::parse(r.output);
+  const auto& ranks = cut["estimate"]["ranks"];
+  ASSERT_EQ(ranks.size(), 3u);
+  double held = 0.0;
+  for (const auto& rank : ranks) {
+    held += rank["triangles"].get<double>();
+    EXPECT_LT(rank["peak_bytes"].get<double>(),
+              whole["estimate"]["ranks"][0]["peak_bytes"].get<double>());
+  }
+  EXPECT_EQ(held, cut["triangles_unique"].get<double>()) << "the shares make the scene";
+  EXPECT_EQ(whole["estimate"]["ranks"][1]["triangles"], whole["triangles_unique"]);
+  EXPECT_EQ(runLzb(scene + "--distribute auto").status, 2);
+}
+
 TEST(Limits, MeasuresCopyScatterAndKeyRates) {
   const RunResult r = runLzb("limits --seconds 0.1 --width 64 --height 48 --threads 1");
   ASSERT_EQ(r.status, 0) << r.output;

@@ -22,12 +22,22 @@ uint32_t defaultRegions(uint64_t uniqueTriangles, Parts layout) {
   return uint32_t(std::clamp<uint64_t>(uniqueTriangles >> shift, 16, 4096));
 }
 
+namespace {
+
+// Each region's triangles, the units' (triangles: empty, one each) summed by their region.
+std::vector<uint64_t> trianglesOfRegions(const std::vector<uint32_t>& regionOf,
+                                         std::span<const uint64_t> triangles, uint32_t regions) {
+  std::vector<uint64_t> sum(regions, 0);
+  for (size_t u = 0; u < regionOf.size(); ++u) sum[regionOf[u]] += triangles.empty() ? 1 : triangles[u];
+  return sum;
+}
+
+}  // namespace
+
 PartOf partOfRank(std::span<const glm::dvec3> centres, std::span<const uint64_t> triangles,
                   HeldShare& held, const WorkShare& share, Parts layout) {
   const std::vector<uint32_t> regionOf = splitIntoRegions(centres, triangles, held.regions);
-  std::vector<uint64_t> regionTriangles(held.regions, 0);
-  for (size_t u = 0; u < regionOf.size(); ++u)
-    regionTriangles[regionOf[u]] += triangles.empty() ? 1 : triangles[u];
+  const std::vector<uint64_t> regionTriangles = trianglesOfRegions(regionOf, triangles, held.regions);
   held.mine = regionsOfRank(regionTriangles, share);
   held.layout = layout;
   std::sort(held.mine.begin(), held.mine.end());
@@ -48,6 +58,38 @@ uint32_t partCount(const HeldShare& held, Parts layout) {
   return layout == Parts::kOne ? 1 : uint32_t(held.mine.size());
 }
 
+namespace {
+
+// The units' world centres and (when some are instances) triangles, as the cut weighs them.
+struct WeightedUnits {
+  std::vector<glm::dvec3> centres;
+  std::vector<uint64_t> triangles;  // empty: one each (only the main mesh's triangles)
+};
+WeightedUnits weigh(const Scene& whole, const SceneUnits& units) {
+  WeightedUnits w;
+  w.centres.resize(units.size());
+  for (size_t u = 0; u < units.size(); ++u) w.centres[u] = units.centre(whole, u);
+  if (!units.opened.empty())
+    for (size_t u = 0; u < units.size(); ++u) w.triangles.push_back(units.triangles(u));
+  return w;
+}
+
+}  // namespace
+
+std::vector<uint64_t> trianglesPerRank(const Scene& whole, uint32_t regions, Parts layout,
+                                       int ranks) {
+  if (!regions) regions = defaultRegions(whole.uniqueTriangles(), layout);
+  const SceneUnits units = sceneUnits(whole, regions);
+  const WeightedUnits w = weigh(whole, units);
+  const std::vector<uint64_t> regionTriangles = trianglesOfRegions(
+      splitIntoRegions(w.centres, w.triangles, regions), w.triangles, regions);
+  std::vector<uint64_t> held(size_t(ranks), 0);
+  for (int r = 0; r < ranks; ++r)
+    for (uint32_t region : regionsOfRank(regionTriangles, WorkShare{r, ranks}))
+      held[size_t(r)] += regionTriangles[region];
+  return held;
+}
+
 HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share, Parts layout) {
   HeldShare held;
   held.regions = regions ? regions : defaultRegions(whole.uniqueTriangles(), layout);
@@ -55,13 +97,8 @@ HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share
   held.units = units.size();
   PartOf partOf;
   {
-    std::vector<glm::dvec3> centres(units.size());
-    for (size_t u = 0; u < units.size(); ++u) centres[u] = units.centre(whole, u);
-    // Only the main mesh's triangles: one each, cut by count (none of the halving's selections).
-    std::vector<uint64_t> triangles;
-    if (!units.opened.empty())
-      for (size_t u = 0; u < units.size(); ++u) triangles.push_back(units.triangles(u));
-    partOf = partOfRank(centres, triangles, held, share, layout);
+    const WeightedUnits w = weigh(whole, units);
+    partOf = partOfRank(w.centres, w.triangles, held, share, layout);
   }
   held.parts = cutScene(whole, units, partOf, partCount(held, layout));
   return held;

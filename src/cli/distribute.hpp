@@ -55,6 +55,11 @@ uint32_t partCount(const HeldShare& held, Parts layout);
 // Cuts `whole` into `regions` regions (0: defaultRegions) and keeps those of rank share.rank.
 HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share, Parts layout);
 
+// The triangles (expanded) each of `ranks` ranks would hold of `whole` cut into `regions` regions
+// (0: defaultRegions) for a method of `layout`: what holdShare keeps, without keeping it.
+std::vector<uint64_t> trianglesPerRank(const Scene& whole, uint32_t regions, Parts layout,
+                                       int ranks);
+
 // Which of this rank's parts each unit goes to, given the units' world centres and triangles
 // (empty: one each), with held.regions set: cuts the regions (splitIntoRegions), deals them
 // (regionsOfRank) and sets held.mine, held.triangles and held.layout. The one cut of both the loaded and the

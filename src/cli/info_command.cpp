@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "src/cli/distribute.hpp"
+#include "src/cli/memory_estimate.hpp"
+#include "src/cli/methods.hpp"
 #include "src/cli/report.hpp"
 #include "src/core/error.hpp"
 #include "src/core/system.hpp"
@@ -16,6 +19,14 @@ void addInfoOptions(CLI::App& c, InfoArgs& a) {
   c.add_option("scene", a.scene, "mesh file, scene.toml, or builtin:NAME?key=value")->required();
   c.add_option("--max-depth", a.maxDepth, "octree maximum depth")->capture_default_str();
   c.add_option("--leaf-size", a.leafSize, "octree maximum entries per leaf")->capture_default_str();
+  c.add_option("--method", a.method, "the method whose peak memory per rank is estimated")
+      ->capture_default_str();
+  c.add_option("--ranks", a.ranks, "the ranks the estimate is for")->capture_default_str();
+  c.add_option("--distribute", a.distribute,
+               "replicate: every rank holds the whole scene | data: each holds its regions' share")
+      ->capture_default_str();
+  c.add_option("--regions", a.regions, "--distribute data: the regions (0: from the scene's size)")
+      ->capture_default_str();
   c.add_flag("--json", a.json, "print JSON instead of text");
   c.add_flag("--quiet,-q", a.quiet, "no progress lines");
 }
@@ -32,11 +43,48 @@ uint64_t sceneBytes(const Scene& scene) {
   return bytes;
 }
 
+void printEstimate(const nlohmann::json& e) {
+  const auto& ranks = e["ranks"];
+  std::printf("estimate:   --method %s, %zu rank(s), --distribute %s (one process may use %.0f MiB here, ranks on one machine divide it)\n",
+              e["method"].get<std::string>().c_str(), ranks.size(),
+              e["distribute"].get<std::string>().c_str(),
+              e["usable_bytes"].get<double>() / 1048576.0);
+  constexpr size_t kListed = 8;
+  for (size_t r = 0; r < std::min(ranks.size(), kListed); ++r)
+    std::printf("  rank %zu: %llu triangles, peak %.0f MiB\n", r,
+                (unsigned long long)ranks[r]["triangles"].get<uint64_t>(),
+                ranks[r]["peak_bytes"].get<double>() / 1048576.0);
+  if (ranks.size() > kListed) std::printf("  ... (--json lists every rank)\n");
+}
+
+// The estimated peak of each rank (memory_estimate.hpp), frame buffers excluded.
+nlohmann::json rankEstimates(const InfoArgs& a, const Scene& scene) {
+  const Distribution d = parseDistribution(a.distribute, "--distribute");
+  require(d != Distribution::kAuto, "--distribute", "info estimates replicate or data, not auto");
+  std::vector<uint64_t> held(size_t(a.ranks), scene.uniqueTriangles());
+  if (d == Distribution::kData)
+    held = trianglesPerRank(scene, a.regions, partsFor(a.method), a.ranks);
+  nlohmann::json ranks = nlohmann::json::array();
+  for (int r = 0; r < a.ranks; ++r) {
+    // An instanced share holds at most the scene's unique triangles.
+    const uint64_t triangles = std::min(held[size_t(r)], scene.uniqueTriangles());
+    ranks.push_back({{"rank", r},
+                     {"triangles", triangles},
+                     {"peak_bytes", methodPeakBytes(a.method, triangles)}});
+  }
+  return {{"method", a.method}, {"distribute", a.distribute}, {"ranks", ranks},
+          {"usable_bytes", usableMemoryBytes()}};
+}
+
 }  // namespace
 
 int runInfo(const InfoArgs& a, const mpi::Group& g) {
   require(a.maxDepth >= 0 && a.maxDepth <= 32, "--max-depth", "must be in [0, 32]");
   require(a.leafSize >= 1, "--leaf-size", "must be >= 1");
+  methodNamed(a.method, "--method");
+  require(a.ranks >= 1 && a.ranks <= 1 << 20, "--ranks", "must be in [1, 2^20]");
+  require(a.regions <= 65536, "--regions", "must be in [0, 65536]");
+  parseDistribution(a.distribute, "--distribute");
   const bool talk = g.root() && !a.quiet;
   Stopwatch clock;
   const Scene scene = loadScene(a.scene, !talk);
@@ -70,6 +118,7 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
                     {"octree_bytes", octreeBytes},
                     {"peak_resident_bytes", peakMemoryBytes()}};
   info["seconds"] = {{"load", loadSeconds}, {"octrees", octreeSeconds}};
+  info["estimate"] = rankEstimates(a, scene);
   if (!g.root()) return 0;
   if (a.json) {
     std::printf("%s\n", info.dump(2).c_str());
@@ -99,6 +148,7 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
     std::printf("  ... and %zu more octrees (--json lists them all)\n", octrees.size() - kListed);
   std::printf("memory:     scene %.1f MB, octrees %.1f MB, peak resident %.1f MB\n",
               double(sceneBytes(scene)) / 1e6, double(octreeBytes) / 1e6, double(peakMemoryBytes()) / 1e6);
+  printEstimate(info["estimate"]);
   return 0;
 }
 

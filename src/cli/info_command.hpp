@@ -1,5 +1,7 @@
 #pragma once
-// `lzb info SCENE`: unique and expanded triangle counts, bounds, octree statistics, memory.
+// `lzb info SCENE`: unique and expanded triangle counts, bounds, octree statistics, memory, and
+// the estimated peak per rank of rendering it (--method, --ranks, --distribute, --regions).
+#include <cstdint>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -12,6 +14,10 @@ struct InfoArgs {
   std::string scene;
   int maxDepth = 16;
   int leafSize = 150;
+  std::string method = "hybrid";
+  int ranks = 1;
+  std::string distribute = "replicate";
+  uint32_t regions = 0;
   bool json = false;
   bool quiet = false;
 };
