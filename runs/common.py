@@ -84,11 +84,12 @@ def wait_quiet(limit_s=600):
     return False
 
 
-def render(scene, args, ranks=1, threads=1, quiet_wait=True):
-    """Runs lzb render (under mpirun for ranks > 1); returns (shown command, report)."""
+def render(scene, args, ranks=1, threads=1, quiet_wait=True, keep=None):
+    """Runs lzb render (under mpirun for ranks > 1); returns (shown command, report). keep: a
+    folder for the frames, left in place (else a temporary one, removed)."""
     if quiet_wait:
         wait_quiet()
-    out = tempfile.mkdtemp(prefix="lzb-run-")
+    out = keep or tempfile.mkdtemp(prefix="lzb-run-")
     try:
         cmd = [LZB, "render", scene, *args, "--threads", str(threads), "--quiet", "--out", out]
         if ranks > 1:
@@ -97,7 +98,8 @@ def render(scene, args, ranks=1, threads=1, quiet_wait=True):
         with open(os.path.join(out, "report.json")) as f:
             rep = json.load(f)
     finally:
-        shutil.rmtree(out, ignore_errors=True)
+        if not keep:
+            shutil.rmtree(out, ignore_errors=True)
     shown = " ".join(c if c != out else "OUT" for c in cmd).replace(ROOT + "/", "")
     return shown, rep
 

@@ -1,16 +1,24 @@
 #!/usr/bin/env python3
-"""--distribute data against replicate: peak memory per rank, load (with the cut), set-up and
-median frame of the exact methods on the 9.6 M-triangle landscape
+"""--distribute data against replicate on the 9.6 M-triangle landscape
 (builtin:landscape?objects=400000, generated twice under data, each rank keeping its share) at
-640x480, 6 frames (the first dropped): replicated on 1 rank x 2 threads and 2 x 1, data on 1 x 2,
-2 x 1 and 3 x 1 (3 ranks oversubscribe the 2 cores: their times are not speedups).
+640x480, 6 frames (the first dropped): peak memory per rank, load (with the cut), set-up, median
+frame, and the hybrid's accuracy against raycast (lzb compare on the last frame), replicated on
+1 rank x 2 threads and 2 x 1, data on 1 x 2, 2 x 1 and 4 x 1 (4 ranks oversubscribe the 2 cores:
+their times are not speedups). Then the capacity run on ~5*10^7 triangles (objects=2097152):
+raycast replicated on one rank, refused on one rank under an address-space limit, and rendered
+by 4 ranks in data mode each under the same limit, the image byte-identical to the unlimited one.
 
 Usage: python3 runs/distribute/run.py [--quick]   (from the repository root, after
        scripts/build.sh)
-Writes runs/distribute/ranks.csv (one row per configuration and rank).
+Writes runs/distribute/ranks.csv (one row per configuration and rank) and capacity.csv.
 """
+import filecmp
+import json
 import os
+import shutil
+import subprocess
 import sys
+import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402
@@ -20,37 +28,114 @@ common.accept_args(flags=("--quick",))
 HERE = os.path.dirname(os.path.abspath(__file__))
 QUICK = "--quick" in sys.argv
 SCENE = "builtin:landscape?objects=4000" if QUICK else "builtin:landscape?objects=400000"
+BIG = "builtin:landscape?objects=40000" if QUICK else "builtin:landscape?objects=2097152"
 FRAMES = 3 if QUICK else 6
-METHODS = ["raycast", "zbuffer"]
+METHODS = ["raycast", "zbuffer", "hybrid"]
 CONFIGS = [(1, 2, "replicate"), (2, 1, "replicate"), (1, 2, "data"), (2, 1, "data"),
-           (3, 1, "data")]  # ranks, threads, mode
+           (4, 1, "data")]  # ranks, threads, mode
 
 
-def main():
+def accuracy(image_dir, reference_dir, scene):
+    """Covered-correct rate of the last frame of image_dir against the reference's."""
+    last = f"frame_{FRAMES - 1:04d}.exr"
+    out = subprocess.run([common.LZB, "compare", os.path.join(image_dir, last),
+                          os.path.join(reference_dir, last), "--scene", scene],
+                         check=True, capture_output=True, text=True, env=common.ENV).stdout
+    return json.loads(out)["correct_rate_covered"]
+
+
+def ranks_study(work):
+    reference = os.path.join(work, "reference")
+    common.render(SCENE, ["--method", "raycast", "--subsamples", "--frames", str(FRAMES)],
+                  threads=2, keep=reference)
     rows, commands = [], []
     for method in METHODS:
         for ranks, threads, mode in CONFIGS:
+            kept = os.path.join(work, f"{method}_{ranks}_{mode}")
             shown, rep = common.render(
                 SCENE, ["--method", method, "--frames", str(FRAMES), "--distribute", mode],
-                ranks=ranks, threads=threads)
+                ranks=ranks, threads=threads, keep=kept)
             commands.append(shown)
+            correct = accuracy(kept, reference, SCENE) if method == "hybrid" else 1.0
+            shutil.rmtree(kept, ignore_errors=True)
             frames = rep["frames"][1:]
             frame_s = common.median(f["seconds"] for f in frames)
             held = {r["rank"]: r["counts"].get("held_triangles", rep["scene"]["triangles_expanded"])
                     for r in rep["setup"]["ranks"]}
             for r in rep["frames"][-1]["ranks"]:
-                work = r["counts"].get("rays", r["counts"].get("triangles_drawn", 0))
+                work_done = r["counts"].get("rays", r["counts"].get("triangles_drawn", 0))
                 rows.append({"method": method, "mode": mode, "ranks": ranks, "threads": threads,
                              "rank": r["rank"], "held_triangles": int(held[r["rank"]]),
                              "peak_mib": round(r["peak_memory_bytes"] / 2**20),
                              "load_s": round(rep["load_seconds"], 2),
                              "setup_s": round(rep["setup_seconds"], 2),
-                             "frame_ms": round(1000 * frame_s, 1), "work": int(work)})
+                             "frame_ms": round(1000 * frame_s, 1), "work": int(work_done),
+                             "covered_correct": round(correct, 5)})
             print(f"{method} {ranks}x{threads} {mode}: frame {1000 * frame_s:.1f} ms, peak "
-                  f"{[row['peak_mib'] for row in rows[-ranks:]]} MiB", flush=True)
+                  f"{[row['peak_mib'] for row in rows[-ranks:]]} MiB, covered-correct "
+                  f"{correct:.5f}", flush=True)
     common.write_csv(os.path.join(HERE, "ranks.csv"), rows,
                      ["method", "mode", "ranks", "threads", "rank", "held_triangles", "peak_mib",
-                      "load_s", "setup_s", "frame_ms", "work"], commands)
+                      "load_s", "setup_s", "frame_ms", "work", "covered_correct"], commands)
+
+
+def limited_render(work, name, ranks, limit_kib, extra):
+    """lzb render of BIG under `ulimit -v limit_kib` (0: none): (exit status, report or None)."""
+    out = os.path.join(work, name)
+    cmd = [common.LZB, "render", BIG, "--method", "raycast", "--frames", "2", "--quiet",
+           "--threads", "2" if ranks == 1 else "1", "--out", out, *extra]
+    if limit_kib:
+        cmd = ["sh", "-c", f'ulimit -v {limit_kib}; exec "$0" "$@"', *cmd]
+    if ranks > 1:
+        cmd = [*common.MPIRUN, "-n", str(ranks), *cmd]
+    common.wait_quiet()
+    status = subprocess.run(cmd, env=common.ENV, stdout=subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True)
+    shown = " ".join(c if c != out else "OUT" for c in cmd).replace(common.ROOT + "/", "")
+    rep = None
+    if status.returncode == 0:
+        with open(os.path.join(out, "report.json")) as f:
+            rep = json.load(f)
+    return shown, status.returncode, status.stderr.strip().splitlines()[-1:] , rep, out
+
+
+def capacity_study(work):
+    """One rank refuses what 4 ranks under the same limit render, byte for byte."""
+    rows, commands = [], []
+    shown, status, _, whole, whole_dir = limited_render(work, "whole", 1, 0, [])
+    commands.append(shown)
+    peak = max(r["peak_memory_bytes"] for r in whole["setup"]["ranks"])
+    peak = max(peak, max(f["peak_memory_bytes"] for f in whole["frames"]))
+    # 40 % of the one rank's peak and 1 GiB for the address space a process maps beside its
+    # data: the replicated scene cannot fit, a quarter of it can.
+    limit_kib = int((0.4 * peak + 2**30) / 1024)
+    rows.append({"run": "1 rank, no limit", "limit_mib": 0, "status": status,
+                 "peak_mib_per_rank": round(peak / 2**20), "same_image": True, "message": ""})
+    for name, ranks, extra in [("one", 1, []), ("four", 4, ["--distribute", "data"])]:
+        shown, status, message, rep, out = limited_render(work, name, ranks, limit_kib, extra)
+        commands.append(shown)
+        same = status == 0 and all(
+            filecmp.cmp(os.path.join(whole_dir, f), os.path.join(out, f), shallow=False)
+            for f in ("frame_0000.exr", "frame_0001.exr"))
+        peaks = [] if rep is None else [r["peak_memory_bytes"] for r in rep["setup"]["ranks"]] + [
+            r["peak_memory_bytes"] for f in rep["frames"] for r in f["ranks"]]
+        rows.append({"run": f"{ranks} rank(s) {' '.join(extra) or 'replicated'}",
+                     "limit_mib": round(limit_kib / 1024), "status": status,
+                     "peak_mib_per_rank": round(max(peaks) / 2**20) if peaks else "",
+                     "same_image": same, "message": " ".join(message)})
+        print(rows[-1], flush=True)
+    common.write_csv(os.path.join(HERE, "capacity.csv"), rows,
+                     ["run", "limit_mib", "status", "peak_mib_per_rank", "same_image", "message"],
+                     commands)
+
+
+def main():
+    work = tempfile.mkdtemp(prefix="lzb-distribute-")
+    try:
+        ranks_study(work)
+        capacity_study(work)
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
 
 
 if __name__ == "__main__":
