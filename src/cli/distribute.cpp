@@ -28,7 +28,8 @@ namespace {
 std::vector<uint64_t> trianglesOfRegions(const std::vector<uint32_t>& regionOf,
                                          std::span<const uint64_t> triangles, uint32_t regions) {
   std::vector<uint64_t> sum(regions, 0);
-  for (size_t u = 0; u < regionOf.size(); ++u) sum[regionOf[u]] += triangles.empty() ? 1 : triangles[u];
+  for (size_t u = 0; u < regionOf.size(); ++u)
+    sum[regionOf[u]] += triangles.empty() ? 1 : triangles[u];
   return sum;
 }
 
@@ -37,7 +38,8 @@ std::vector<uint64_t> trianglesOfRegions(const std::vector<uint32_t>& regionOf,
 PartOf partOfRank(std::span<const glm::dvec3> centres, std::span<const uint64_t> triangles,
                   HeldShare& held, const WorkShare& share, Parts layout) {
   const std::vector<uint32_t> regionOf = splitIntoRegions(centres, triangles, held.regions);
-  const std::vector<uint64_t> regionTriangles = trianglesOfRegions(regionOf, triangles, held.regions);
+  const std::vector<uint64_t> regionTriangles =
+      trianglesOfRegions(regionOf, triangles, held.regions);
   held.mine = regionsOfRank(regionTriangles, share);
   held.layout = layout;
   std::sort(held.mine.begin(), held.mine.end());
@@ -81,8 +83,8 @@ std::vector<uint64_t> trianglesPerRank(const Scene& whole, uint32_t regions, Par
   if (!regions) regions = defaultRegions(whole.uniqueTriangles(), layout);
   const SceneUnits units = sceneUnits(whole, regions);
   const WeightedUnits w = weigh(whole, units);
-  const std::vector<uint64_t> regionTriangles = trianglesOfRegions(
-      splitIntoRegions(w.centres, w.triangles, regions), w.triangles, regions);
+  const std::vector<uint64_t> regionTriangles =
+      trianglesOfRegions(splitIntoRegions(w.centres, w.triangles, regions), w.triangles, regions);
   std::vector<uint64_t> held(size_t(ranks), 0);
   for (int r = 0; r < ranks; ++r)
     for (uint32_t region : regionsOfRank(regionTriangles, WorkShare{r, ranks}))
@@ -118,8 +120,11 @@ class PartRenderer : public Renderer {
     return method_;
   }
   std::string decomposition() const override {
-    return "data-parallel (--distribute data): each rank holds the scene's regions dealt to it "
-           "and renders the whole frame of them; frames composited by depth with their colour";
+    return std::string(
+               "data-parallel (--distribute data): each rank holds the scene's regions "
+               "dealt to it and renders the whole frame of them") +
+           (held_.layout == Parts::kOne ? "" : ", each region apart, composited by depth") +
+           "; frames composited by depth with their colour";
   }
 
   // Every rank renders its whole parts: the regions are the share.

@@ -39,10 +39,10 @@ uint32_t defaultRegions(uint64_t uniqueTriangles, Parts layout);
 
 // What a rank holds of the scene.
 struct HeldShare {
-  uint32_t regions = 0;          // the scene's regions
-  uint64_t units = 0;            // the scene's units (src/core/scene_part.hpp)
-  std::vector<uint32_t> mine;    // the regions this rank holds, in increasing order
-  uint64_t triangles = 0;        // their triangles (expanded)
+  uint32_t regions = 0;        // the scene's regions
+  uint64_t units = 0;          // the scene's units (src/core/scene_part.hpp)
+  std::vector<uint32_t> mine;  // the regions this rank holds, in increasing order
+  uint64_t triangles = 0;      // their triangles (expanded)
   Parts layout = Parts::kOne;
   std::vector<ScenePart> parts;  // their units: one part, or one per region of `mine`
 };
@@ -62,8 +62,8 @@ std::vector<uint64_t> trianglesPerRank(const Scene& whole, uint32_t regions, Par
 
 // Which of this rank's parts each unit goes to, given the units' world centres and triangles
 // (empty: one each), with held.regions set: cuts the regions (splitIntoRegions), deals them
-// (regionsOfRank) and sets held.mine, held.triangles and held.layout. The one cut of both the loaded and the
-// streamed scene (streamed_share.hpp).
+// (regionsOfRank) and sets held.mine, held.triangles and held.layout. The one cut of both the
+// loaded and the streamed scene (streamed_share.hpp).
 PartOf partOfRank(std::span<const glm::dvec3> centres, std::span<const uint64_t> triangles,
                   HeldShare& held, const WorkShare& share, Parts layout);
 

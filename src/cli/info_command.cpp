@@ -45,10 +45,11 @@ uint64_t sceneBytes(const Scene& scene) {
 
 void printEstimate(const nlohmann::json& e) {
   const auto& ranks = e["ranks"];
-  std::printf("estimate:   --method %s, %zu rank(s), --distribute %s (one process may use %.0f MiB here, ranks on one machine divide it)\n",
-              e["method"].get<std::string>().c_str(), ranks.size(),
-              e["distribute"].get<std::string>().c_str(),
-              e["usable_bytes"].get<double>() / 1048576.0);
+  std::printf(
+      "estimate:   --method %s, %zu rank(s), --distribute %s (one process may use %.0f MiB here, "
+      "ranks on one machine divide it)\n",
+      e["method"].get<std::string>().c_str(), ranks.size(),
+      e["distribute"].get<std::string>().c_str(), e["usable_bytes"].get<double>() / 1048576.0);
   constexpr size_t kListed = 8;
   for (size_t r = 0; r < std::min(ranks.size(), kListed); ++r)
     std::printf("  rank %zu: %llu triangles, peak %.0f MiB\n", r,
@@ -72,7 +73,9 @@ nlohmann::json rankEstimates(const InfoArgs& a, const Scene& scene) {
                      {"triangles", triangles},
                      {"peak_bytes", methodPeakBytes(a.method, triangles)}});
   }
-  return {{"method", a.method}, {"distribute", a.distribute}, {"ranks", ranks},
+  return {{"method", a.method},
+          {"distribute", a.distribute},
+          {"ranks", ranks},
           {"usable_bytes", usableMemoryBytes()}};
 }
 

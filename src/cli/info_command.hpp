@@ -1,10 +1,9 @@
 #pragma once
 // `lzb info SCENE`: unique and expanded triangle counts, bounds, octree statistics, memory, and
 // the estimated peak per rank of rendering it (--method, --ranks, --distribute, --regions).
+#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
-
-#include <CLI/CLI.hpp>
 
 #include "mpi/group.hpp"
 

@@ -16,16 +16,18 @@ struct Model {
 
 // runs/distribute/memory_model.csv (2 threads, 640x480): slopes and bases, rounded up.
 const std::map<std::string, Model>& models() {
-  static const std::map<std::string, Model> m = {
-      {"zbuffer", {96, 180}}, {"raycast", {200, 80}}, {"lzb", {256, 80}},
-      {"hybrid", {280, 110}}, {"rzb", {232, 90}},     {"surfels", {80, 100}},
-      {"sqrt5", {88, 100}},   {"sampletree", {200, 80}}};
+  static const std::map<std::string, Model> m = {{"zbuffer", {96, 180}}, {"raycast", {200, 80}},
+                                                 {"lzb", {256, 80}},     {"hybrid", {280, 110}},
+                                                 {"rzb", {232, 90}},     {"surfels", {80, 100}},
+                                                 {"sqrt5", {88, 100}},   {"sampletree", {200, 80}}};
   return m;
 }
 
 }  // namespace
 
-bool hasMemoryModel(const std::string& method) { return models().count(method) > 0; }
+bool hasMemoryModel(const std::string& method) {
+  return models().count(method) > 0;
+}
 
 uint64_t methodPeakBytes(const std::string& method, uint64_t triangles) {
   const auto found = models().find(method);
@@ -34,7 +36,9 @@ uint64_t methodPeakBytes(const std::string& method, uint64_t triangles) {
   return (m.baseMiB << 20) + m.bytesPerTriangle * triangles;
 }
 
-uint64_t streamedCutBytes(uint64_t triangles) { return triangles * (32 + 4); }
+uint64_t streamedCutBytes(uint64_t triangles) {
+  return triangles * (32 + 4);
+}
 
 void requireEstimate(uint64_t bytes, const std::string& scene, const std::string& what,
                      const std::string& hint) {

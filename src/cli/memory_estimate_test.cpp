@@ -14,7 +14,8 @@ namespace {
 TEST(MemoryEstimate, EveryRegisteredMethodHasAMeasuredModel) {
   for (const auto& method : makeRegisteredMethods()) {
     EXPECT_TRUE(hasMemoryModel(method->name())) << method->name();
-    EXPECT_GT(methodPeakBytes(method->name(), 2'000'000), methodPeakBytes(method->name(), 1'000'000))
+    EXPECT_GT(methodPeakBytes(method->name(), 2'000'000),
+              methodPeakBytes(method->name(), 1'000'000))
         << method->name() << ": more triangles, more memory";
   }
 }
@@ -36,7 +37,8 @@ TEST(MemoryEstimate, MoreThanTheUsableMemoryIsRefusedWithTheEstimate) {
   } catch (const InputError& e) {
     const std::string m = e.what();
     EXPECT_NE(m.find("scene.ply: rank 1 of 2 holding 9 triangles needs an estimated"),
-              std::string::npos) << m;
+              std::string::npos)
+        << m;
     EXPECT_NE(m.find(": more ranks"), std::string::npos) << m;
   }
 }

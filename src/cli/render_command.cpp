@@ -212,7 +212,8 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
       renderer = createPartRenderer(a, plan);
     else
       renderer = methodNamed(a.method, "--method").create(plan.scene, plan.options);
-    if (!a.reference.empty()) judge = makeJudge(a.reference, plan.scene, plan.options, groups.group().root());
+    if (!a.reference.empty())
+      judge = makeJudge(a.reference, plan.scene, plan.options, groups.group().root());
     setupSeconds = setupClock.seconds();
   });
   const nlohmann::json methodSetup = mpi::gatherStats(g, renderer->setupStats());

@@ -1,10 +1,10 @@
 #include "src/cli/render_setup.hpp"
 
+#include <unistd.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <optional>
-
-#include <unistd.h>
 
 #include "mpi/composite.hpp"
 #include "src/cli/distribute.hpp"

@@ -16,8 +16,8 @@ namespace lzb {
 
 // This rank's share of `scene` cut into `regions` regions (0: defaultRegions) in parts of
 // `layout`, and the whole scene's outline. beforeKeeping(held) runs once the regions are dealt,
-// before any triangle is kept (to refuse a share that would not fit). Throws InputError when the centres would not fit in memory, or as the reader
-// does (a file changed between the passes).
+// before any triangle is kept (to refuse a share that would not fit). Throws InputError when the
+// centres would not fit in memory, or as the reader does (a file changed between the passes).
 HeldShare holdStreamedShare(const ChunkedScene& scene, uint32_t regions, const WorkShare& share,
                             Parts layout, SceneOutline& outline,
                             const std::function<void(const HeldShare&)>& beforeKeeping = {});

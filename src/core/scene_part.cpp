@@ -264,7 +264,8 @@ std::vector<ScenePart> cutScene(const Scene& whole, const SceneUnits& units, con
   for (ScenePart& part : cut) {
     startPart(whole, part.scene);
     builds.push_back({whole, part, {}, {}, std::vector<bool>(whole.nodes.size(), false)});
-    builds.back().copied[whole.root] = true;  // the root is cut, never copied (no instance reaches it)
+    builds.back().copied[whole.root] =
+        true;  // the root is cut, never copied (no instance reaches it)
     // First in every part: the main mesh's node has one index in all of them.
     if (units.meshTriangles > 0) meshNode = builds.back().nodeAt(units.meshPath);
   }

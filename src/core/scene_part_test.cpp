@@ -121,8 +121,7 @@ TEST(ScenePart, AnEmptyPartHoldsNothing) {
   EXPECT_EQ(part.scene.expandedTriangles(), 0u);
   EXPECT_EQ(part.scene.uniqueTriangles(), 0u);
   EXPECT_EQ(part.ids.size(), 0u);
-  EXPECT_THROW(cutScene(whole, units, PartOf(units.size() - 1, 0), 1),
-               std::invalid_argument);
+  EXPECT_THROW(cutScene(whole, units, PartOf(units.size() - 1, 0), 1), std::invalid_argument);
 }
 
 }  // namespace

@@ -73,7 +73,9 @@ int processesOnMachine = 1;
 
 }  // namespace
 
-void setProcessesOnMachine(int processes) { processesOnMachine = std::max(processes, 1); }
+void setProcessesOnMachine(int processes) {
+  processesOnMachine = std::max(processes, 1);
+}
 
 uint64_t usableMemoryBytes() {
   return std::min(physicalMemoryBytes() / uint64_t(processesOnMachine), addressSpaceLeft());
@@ -83,7 +85,8 @@ void requireMemory(uint64_t bytes, const std::string& where, const std::string& 
   const uint64_t usable = usableMemoryBytes();
   if (bytes <= usable) return;
   throw InputError(where + ": " + what + " needs " + mib(bytes) + " MiB, more than the " +
-                   mib(usable) + " MiB this process may use (its share of physical memory, ulimit -v)");
+                   mib(usable) +
+                   " MiB this process may use (its share of physical memory, ulimit -v)");
 }
 
 }  // namespace lzb
