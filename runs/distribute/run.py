@@ -8,9 +8,13 @@ their times are not speedups). Then the capacity run on ~5*10^7 triangles (objec
 raycast replicated on one rank, refused on one rank under an address-space limit, and rendered
 by 4 ranks in data mode each under the same limit, the image byte-identical to the unlimited one.
 
-Usage: python3 runs/distribute/run.py [--quick]   (from the repository root, after
-       scripts/build.sh)
-Writes runs/distribute/ranks.csv (one row per configuration and rank) and capacity.csv.
+Last, the composite's share of a 1920x1080 raycast frame (landscape of 1.0 M triangles, 6
+frames) on 2 and 4 ranks, replicated and in data mode.
+
+Usage: python3 runs/distribute/run.py [--quick] [--composite]   (from the repository root,
+       after scripts/build.sh; --composite: that part alone)
+Writes runs/distribute/ranks.csv (one row per configuration and rank), capacity.csv and
+composite.csv.
 """
 import filecmp
 import json
@@ -23,7 +27,7 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402
 
-common.accept_args(flags=("--quick",))
+common.accept_args(flags=("--quick", "--composite"))
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 QUICK = "--quick" in sys.argv
@@ -129,11 +133,36 @@ def capacity_study(work):
                      commands)
 
 
+def composite_study():
+    """The composite's share of a 1080p frame: whole frames with their colour under data."""
+    rows, commands = [], []
+    for ranks in (2, 4):
+        for mode in ("replicate", "data"):
+            shown, rep = common.render(
+                "builtin:landscape?objects=40000",
+                ["--method", "raycast", "--distribute", mode, "--width", "1920", "--height",
+                 "1080", "--frames", "6"], ranks=ranks)
+            commands.append(shown)
+            frames = rep["frames"][1:]
+            frame_s = common.median(f["seconds"] for f in frames)
+            composite_s = common.median(f["stages"].get("composite", 0.0) for f in frames)
+            rows.append({"ranks": ranks, "mode": mode, "frame_ms": round(1000 * frame_s, 1),
+                         "composite_ms": round(1000 * composite_s, 1),
+                         "composite_share": round(composite_s / frame_s, 3)})
+            print(rows[-1], flush=True)
+    common.write_csv(os.path.join(HERE, "composite.csv"), rows,
+                     ["ranks", "mode", "frame_ms", "composite_ms", "composite_share"], commands)
+
+
 def main():
+    if "--composite" in sys.argv:
+        composite_study()
+        return
     work = tempfile.mkdtemp(prefix="lzb-distribute-")
     try:
         ranks_study(work)
         capacity_study(work)
+        composite_study()
     finally:
         shutil.rmtree(work, ignore_errors=True)
 
