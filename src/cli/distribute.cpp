@@ -156,9 +156,12 @@ class PartRenderer : public Renderer {
 
   FrameStats setupStats() const override {
     FrameStats stats;
-    for (const auto& r : inner_)
-      if (r) addStagesAndCounts(r->setupStats(), stats);
-    if (held_.layout == Parts::kOne && inner_[0]) stats.shared = inner_[0]->setupStats().shared;
+    for (const auto& r : inner_) {
+      if (!r) continue;
+      const FrameStats own = r->setupStats();
+      addStagesAndCounts(own, stats);
+      if (held_.layout == Parts::kOne) stats.shared = own.shared;  // one part: the rank's figures
+    }
     stats.addCount("held_regions", double(held_.mine.size()));
     for (const char* count : {"held_units", "held_triangles", "held_unique_triangles"})
       stats.addCount(count, 0.0);  // a rank holding no region says so too

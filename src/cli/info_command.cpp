@@ -60,10 +60,8 @@ void printEstimate(const nlohmann::json& e) {
 
 // The estimated peak of each rank (memory_estimate.hpp), frame buffers excluded.
 nlohmann::json rankEstimates(const InfoArgs& a, const Scene& scene) {
-  const Distribution d = parseDistribution(a.distribute, "--distribute");
-  require(d != Distribution::kAuto, "--distribute", "info estimates replicate or data, not auto");
   std::vector<uint64_t> held(size_t(a.ranks), scene.uniqueTriangles());
-  if (d == Distribution::kData)
+  if (parseDistribution(a.distribute, "--distribute") == Distribution::kData)
     held = trianglesPerRank(scene, a.regions, partsFor(a.method), a.ranks);
   nlohmann::json ranks = nlohmann::json::array();
   for (int r = 0; r < a.ranks; ++r) {
@@ -87,7 +85,8 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   methodNamed(a.method, "--method");
   require(a.ranks >= 1 && a.ranks <= 1 << 20, "--ranks", "must be in [1, 2^20]");
   require(a.regions <= 65536, "--regions", "must be in [0, 65536]");
-  parseDistribution(a.distribute, "--distribute");
+  require(parseDistribution(a.distribute, "--distribute") != Distribution::kAuto, "--distribute",
+          "info estimates replicate or data, not auto");
   const bool talk = g.root() && !a.quiet;
   Stopwatch clock;
   const Scene scene = loadScene(a.scene, !talk);

@@ -44,10 +44,8 @@ void requireEstimate(uint64_t bytes, const std::string& scene, const std::string
                      const std::string& hint) {
   const uint64_t usable = usableMemoryBytes();
   if (bytes <= usable) return;
-  const auto mib = [](uint64_t b) { return std::to_string((b + (1u << 20) - 1) >> 20); };
-  throw InputError(scene + ": " + what + " needs an estimated " + mib(bytes) +
-                   " MiB, more than the " + mib(usable) +
-                   " MiB this process may use (its share of physical memory, ulimit -v)" + hint);
+  throw InputError(scene + ": " + what + " needs an estimated " + memoryShortfall(bytes, usable) +
+                   hint);
 }
 
 }  // namespace lzb

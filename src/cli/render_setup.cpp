@@ -124,7 +124,8 @@ std::string holding(uint64_t triangles, const RenderArgs& a) {
 }
 
 // The scene, or the outline standing for it when the method holds every triangle and no
-// reference needs them. A streamed scene's size is known, and refused, before it is read.
+// reference needs them. A generated scene's size is known, and refused, before it is made; any
+// other is refused once loaded, before the method builds on it.
 void loadSceneOf(const RenderArgs& a, bool talk, RenderPlan& plan) {
   std::optional<SceneOutline> stored;
   if (a.reference.empty()) stored = methodNamed(a.method, "--method").storedOutline(a.scene);
@@ -134,7 +135,7 @@ void loadSceneOf(const RenderArgs& a, bool talk, RenderPlan& plan) {
     plan.sceneLoaded = false;
     return;
   }
-  if (const std::optional<ChunkedScene> chunked = openChunkedScene(a.scene, true))
+  if (const std::optional<ChunkedScene> chunked = openGeneratedScene(a.scene))
     requireEstimate(rankPeakBytes(a, chunked->triangles), a.scene,
                     "every rank " + holding(chunked->triangles, a),
                     ": cut it across ranks with --distribute data");

@@ -81,12 +81,15 @@ uint64_t usableMemoryBytes() {
   return std::min(physicalMemoryBytes() / uint64_t(processesOnMachine), addressSpaceLeft());
 }
 
+std::string memoryShortfall(uint64_t bytes, uint64_t usable) {
+  return mib(bytes) + " MiB, more than the " + mib(usable) +
+         " MiB this process may use (its share of physical memory, ulimit -v)";
+}
+
 void requireMemory(uint64_t bytes, const std::string& where, const std::string& what) {
   const uint64_t usable = usableMemoryBytes();
   if (bytes <= usable) return;
-  throw InputError(where + ": " + what + " needs " + mib(bytes) + " MiB, more than the " +
-                   mib(usable) +
-                   " MiB this process may use (its share of physical memory, ulimit -v)");
+  throw InputError(where + ": " + what + " needs " + memoryShortfall(bytes, usable));
 }
 
 }  // namespace lzb

@@ -25,5 +25,8 @@ uint64_t usableMemoryBytes();
 // (its share of physical memory, ulimit -v)" when `bytes` exceed usableMemoryBytes(). Call
 // before allocating.
 void requireMemory(uint64_t bytes, const std::string& where, const std::string& what);
+// The words of a refusal after "needs": "N MiB, more than the M MiB this process may use (its
+// share of physical memory, ulimit -v)".
+std::string memoryShortfall(uint64_t bytes, uint64_t usable);
 
 }  // namespace lzb

@@ -20,7 +20,10 @@ bool isPly(const std::string& spec) {
   return ext == ".ply";
 }
 
-std::optional<ChunkedScene> generatedChunks(const std::string& spec) {
+}  // namespace
+
+std::optional<ChunkedScene> openGeneratedScene(const std::string& spec) {
+  if (spec.rfind("builtin:", 0) != 0) return std::nullopt;
   std::optional<BuiltinChunks> chunks = builtinChunks(spec.substr(std::string("builtin:").size()));
   if (!chunks) return std::nullopt;
   ChunkedScene c;
@@ -31,6 +34,8 @@ std::optional<ChunkedScene> generatedChunks(const std::string& spec) {
   c.chunks = std::move(chunks->generate);
   return c;
 }
+
+namespace {
 
 std::optional<ChunkedScene> streamedPly(const std::string& spec, bool quiet) {
   std::string why;
@@ -56,7 +61,7 @@ std::optional<ChunkedScene> streamedPly(const std::string& spec, bool quiet) {
 }  // namespace
 
 std::optional<ChunkedScene> openChunkedScene(const std::string& spec, bool quiet) {
-  if (spec.rfind("builtin:", 0) == 0) return generatedChunks(spec);
+  if (spec.rfind("builtin:", 0) == 0) return openGeneratedScene(spec);
   if (isPly(spec)) return streamedPly(spec, quiet);
   return std::nullopt;
 }

@@ -31,5 +31,8 @@ struct ChunkedScene {
 // PLY that the loader reads otherwise: unless quiet, a note says why). Throws InputError as
 // loadScene would for a bad spec or file.
 std::optional<ChunkedScene> openChunkedScene(const std::string& spec, bool quiet);
+// `spec` as chunks when a generator makes it (opening it generates nothing, so its triangle
+// count comes for free), else nullopt. Opening a PLY stream reads the whole file once.
+std::optional<ChunkedScene> openGeneratedScene(const std::string& spec);
 
 }  // namespace lzb
