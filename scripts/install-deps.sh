@@ -9,6 +9,7 @@ packages=(
   build-essential cmake pkg-config git ccache
   libopenmpi-dev openmpi-bin
   libglm-dev libembree-dev libosmesa6-dev libopenexr-dev libpng-dev libopenimageio-dev
+  openimageio-tools  # OpenImageIO's CMake config fails without its tools' files
   libassimp-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev librandom123-dev
   libgtest-dev
 )
