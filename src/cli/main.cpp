@@ -1,8 +1,7 @@
 // lzb: output-sensitive parallel rendering of highly complex scenes.
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <string>
-
-#include <CLI/CLI.hpp>
 
 #include "mpi/failure.hpp"
 #include "mpi/group.hpp"
@@ -15,6 +14,7 @@
 #include "src/cli/omp_wait_policy.hpp"
 #include "src/cli/quality.hpp"
 #include "src/cli/render_command.hpp"
+#include "src/cli/report_command.hpp"
 #include "src/cli/sweep_command.hpp"
 #include "src/core/error.hpp"
 #include "src/core/system.hpp"
@@ -79,6 +79,12 @@ int main(int argc, char** argv) {
                                                     "with --scene, witnessed by rays as in the report"),
                     compare);
 
+  lzb::ReportArgs reportArgs;
+  addReportOptions(*app.add_subcommand("report",
+                                       "rebuild DIR/report.json from the record a render "
+                                       "keeps there (job.json, frames.jsonl)"),
+                   reportArgs);
+
   try {
     // Parsing is agreed on like every step that can fail on one rank alone.
     bool helpShown = false;
@@ -98,13 +104,16 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("render")) return runRender(render, g, commandLine);
     if (app.got_subcommand("sweep")) return runSweep(sweep, g, commandLine);
     if (app.got_subcommand("batch")) return runBatch(batch, g);
-    // info, limits, export, build-tree and compare: work of each rank alone, written by the root.
+    // info, limits, export, build-tree, report and compare: work of each rank alone, written by the
+    // root.
     int status = 0;
     lzb::mpi::agree(g, [&] {
       if (app.got_subcommand("info")) status = runInfo(info, g);
       else if (app.got_subcommand("limits")) status = runLimits(limits, g);
       else if (app.got_subcommand("export")) status = runExport(exportArgs, g);
       else if (app.got_subcommand("build-tree")) status = runBuildTree(buildTree, g);
+      else if (app.got_subcommand("report"))
+        status = runReport(reportArgs, g);
       else status = runCompare(compare, g);
     });
     return status;

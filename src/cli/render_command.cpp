@@ -7,14 +7,18 @@
 #include "mpi/composite.hpp"
 #include "mpi/failure.hpp"
 #include "mpi/frame_driver.hpp"
+#include "mpi/watchdog.hpp"
 #include "src/cli/distribute.hpp"
+#include "src/cli/frame_record.hpp"
 #include "src/cli/frame_transfer.hpp"
 #include "src/cli/judge.hpp"
 #include "src/cli/methods.hpp"
+#include "src/cli/render_job.hpp"
 #include "src/cli/render_setup.hpp"
 #include "src/cli/report.hpp"
 #include "src/core/error.hpp"
 #include "src/core/progress.hpp"
+#include "src/core/statistics.hpp"
 #include "src/core/timer.hpp"
 #include "src/image/frame_io.hpp"
 #include "src/image/metrics.hpp"
@@ -78,6 +82,19 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
   c.add_option("--frames", a.frames,
                "frames along the camera path (scene keyframes, else a circle around the centre)")
       ->capture_default_str();
+  c.add_option("--frame-range", a.frameRange,
+               "A:B renders only frames A..B-1 of the --frames path (A: to its end), so a path "
+               "splits across jobs or array tasks whose frames equal one run's, byte for byte");
+  c.add_flag("--resume", a.resume,
+             "skip the frames of the range that --out's record (frames.jsonl) holds complete, "
+             "with their files in place, and render the rest; refused (exit 2) when the record "
+             "is of another job: another scene, method, option, size, seed or path");
+  c.add_option("--stall-timeout", a.stallTimeout,
+               "seconds a rank of a multi-rank job may go without finishing a frame, set-up "
+               "included, before it ends itself (exit 1), so no rank waits forever for a lost "
+               "peer when the launcher does not end the job (0: from the first frame on, 10 x "
+               "the longest frame so far, at least 60 s)")
+      ->capture_default_str();
   c.add_option("--fov", a.fov, "vertical field of view in degrees (0: the scene's, else 45)")
       ->capture_default_str();
   c.add_option("--near", a.nearPlane, "near plane distance (0: the scene's, else from the bounds)")
@@ -131,37 +148,71 @@ void renderFrame(const RenderArgs& a, const mpi::FrameDriver& driver, const Came
   if (judge.reference) addAccuracy(driver, judge, camera, f, r.image, r.entry);
 }
 
-// The frame loop: frames are dealt to the frame groups round-robin (frame f to group f mod G),
-// every rank of a group renders its share of the group's frame, and the job's root writes every
-// frame, in order, and records it.
+// "median frame 0.041 s" over the frames rendered so far.
+std::string medianNote(const std::vector<double>& seconds) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "median frame %.3f s", median(seconds));
+  return text;
+}
+
+// The frame loop: the frames to render are dealt to the frame groups round-robin (the i-th to
+// group i mod G), every rank of a group renders its share of the group's frame, and the job's
+// root writes every frame, in order, then appends its record.
 void renderFrames(const RenderArgs& a, const mpi::Group& world, const mpi::SubGroups& groups,
-                  const RenderPlan& plan, Renderer& renderer, const Judge& judge, Report& report,
+                  const RenderPlan& plan, Renderer& renderer, const Judge& judge,
+                  const std::vector<int>& todo, const Report& report, mpi::StallWatchdog& watchdog,
                   bool talk) {
   const mpi::FrameDriver driver(groups.group(), plan.scene,
                                 mpi::parseCompositeStrategy(a.composite, "--composite"));
-  Progress progress("rendering " + std::to_string(a.frames) + " frames", uint64_t(a.frames),
-                    talk && a.frames > 1);
+  Progress progress("rendering " + std::to_string(todo.size()) + " frames", todo.size(),
+                    talk && todo.size() > 1);
+  std::unique_ptr<FrameRecordWriter> record;
+  if (world.root()) record = std::make_unique<FrameRecordWriter>(fs::path(a.out) / kFramesFile);
+  std::vector<double> seconds;
   FrameResult mine, received;
-  for (int first = 0; first < a.frames; first += groups.count()) {
-    const int f = first + groups.index();
-    if (f < a.frames) renderFrame(a, driver, plan.camera(f), renderer, judge, f, mine);
-    for (int k = 0; k < groups.count() && first + k < a.frames; ++k) {
-      const int from = groups.rootOf(k);
+  const size_t G = size_t(groups.count());
+  for (size_t first = 0; first < todo.size(); first += G) {
+    const size_t mineAt = first + size_t(groups.index());
+    if (mineAt < todo.size())
+      renderFrame(a, driver, plan.camera(todo[mineAt]), renderer, judge, todo[mineAt], mine);
+    for (size_t k = 0; k < G && first + k < todo.size(); ++k) {
+      const int from = groups.rootOf(int(k)), f = todo[first + k];
       if (world.root()) {
         if (from != 0) received = receiveFrame(world, from);
         FrameResult& r = from == 0 ? mine : received;
-        const Camera camera = plan.camera(first + k);
+        const Camera camera = plan.camera(f);
         const FrameOrigin origin{camera, plan.scene.expandedTriangles()};
-        writeFrame(r.image, a.out, first + k, a.subsamples ? &r.own : nullptr, &origin);
-        if (groups.count() > 1) r.entry["frame_group"] = k;
-        report.addFrame(first + k, camera, std::move(r.entry), r.image);
-        progress.add();
+        writeFrame(r.image, a.out, f, a.subsamples ? &r.own : nullptr, &origin);
+        if (G > 1) r.entry["frame_group"] = k;
+        nlohmann::json entry = report.frameEntry(f, camera, std::move(r.entry), r.image);
+        entry["files"] = frameFiles(a.out, f);  // the record is appended once they are in place
+        record->append(entry);
+        seconds.push_back(entry["seconds"].get<double>());
+        progress.add(1, medianNote(seconds));
       } else if (world.rank == from) {
         sendFrame(world, 0, mine);
       }
     }
+    watchdog.progress();
   }
   progress.done();
+}
+
+// A folder this run created, holding only its record of no frame yet.
+void removeRecordAndFolder(const std::string& out) {
+  std::error_code ec;
+  fs::remove(fs::path(out) / kJobFile, ec);
+  fs::remove(fs::path(out) / kFramesFile, ec);
+  fs::remove(out, ec);  // (only when it is empty now)
+}
+
+// The root's frames to render, on every rank.
+std::vector<int> shareFrames(const mpi::Group& g, std::vector<int> frames) {
+  uint64_t count = frames.size();
+  LZB_MPI_CALL(MPI_Bcast(&count, 1, MPI_UINT64_T, 0, g.comm));
+  frames.resize(count);
+  LZB_MPI_CALL(MPI_Bcast(frames.data(), int(count), MPI_INT, 0, g.comm));
+  return frames;
 }
 
 // --distribute data: the renderer of this rank's part (loadPlan cut it).
@@ -191,6 +242,7 @@ Distribution resolveDistribution(const RenderArgs& a, const mpi::Group& g) {
 int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& commandLine) {
   Stopwatch total;
   const bool talk = g.root() && !a.quiet;
+  mpi::StallWatchdog watchdog(g.rank, a.stallTimeout, g.size > 1);
   // Everything one rank can get wrong alone (options, files, memory) is agreed on before any
   // rank writes anything or meets the others in a frame (mpi/failure.hpp).
   RenderPlan plan;
@@ -217,29 +269,42 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
     setupSeconds = setupClock.seconds();
   });
   const nlohmann::json methodSetup = mpi::gatherStats(g, renderer->setupStats());
-  bool created = false;
-  mpi::agree(g, [&] {
-    if (g.root()) created = createOutput(a.out);
-  });
-
   Report report(a, plan.options, g, plan.outline, plan.sceneLoaded, commandLine);
+  report.setImageSize(plan.width, plan.height);
   report.setMethod(*renderer, judge.reference.get());
   report.setDistribution(distribution == Distribution::kData ? "data" : "replicate");
   report.setSetup(plan.loadSeconds, setupSeconds, methodSetup);
   if (judge.witness) report.setWitness(*judge.witness);
+
+  // A --resume of another job is refused here, before anything is written.
+  FramesToRender todo;
+  mpi::agree(g, [&] {
+    if (g.root()) todo = framesToRender(a, report.head());
+  });
+  todo.frames = shareFrames(g, std::move(todo.frames));
+  bool created = false;
+  mpi::agree(g, [&] {
+    if (!g.root()) return;
+    created = createOutput(a.out);
+    startRecord(a, report.head(), todo.sameJob);
+  });
+
   try {
     Stopwatch frames;
-    renderFrames(a, g, groups, plan, *renderer, judge, report, talk);
+    renderFrames(a, g, groups, plan, *renderer, judge, todo.frames, report, watchdog, talk);
     if (g.root()) {
-      report.setThroughput(frames.seconds());
+      report.setFrames(recordedFrames(a.out));
+      report.setThroughput(frames.seconds(), todo.frames.size());
       report.setTotal(total.seconds());
       report.write(fs::path(a.out) / "report.json");
       report.printSummary(stdout);
+      if (todo.skipped > 0)
+        std::printf("  resumed: %d frame(s) of the range were complete, %zu rendered\n",
+                    todo.skipped, todo.frames.size());
     }
   } catch (const std::exception& e) {
     // A run refused at its first frame (lzb on a scene too instanced to cull) leaves no folder.
-    std::error_code ec;
-    if (created) fs::remove(a.out, ec);  // (only when still empty)
+    if (created && recordedFrames(a.out).empty()) removeRecordAndFolder(a.out);
     // Ranks meet in collectives at every step of a frame: an error on one rank (say, a full disk
     // at the root) would leave the others waiting, so a multi-rank run ends them all now.
     if (g.size == 1) throw;

@@ -26,6 +26,9 @@ struct RenderArgs {
   uint64_t seed = 1;
   int width = 0, height = 0;  // 0: the scene file's, else 640x480
   int frames = 1;
+  std::string frameRange;     // "A:B": frames A..B-1 only (frame_record.hpp); empty: all
+  bool resume = false;        // skip the frames --out's record holds complete
+  double stallTimeout = 0.0;  // mpi/watchdog.hpp: 0 = automatic
   double fov = 0.0, nearPlane = 0.0, farPlane = 0.0;  // 0: scene's or automatic
   bool quiet = false;
 };

@@ -8,6 +8,7 @@
 
 #include "mpi/composite.hpp"
 #include "src/cli/distribute.hpp"
+#include "src/cli/frame_record.hpp"
 #include "src/cli/memory_estimate.hpp"
 #include "src/cli/methods.hpp"
 #include "src/cli/streamed_share.hpp"
@@ -69,6 +70,9 @@ void validateRenderArgs(const RenderArgs& a) {
   if (a.width && a.height) checkFrameMemory(a, a.width, a.height);
   require(a.threads >= 0 && a.threads <= 1024, "--threads", "must be in [0, 1024]");
   require(a.frames >= 1 && a.frames <= 1000000, "--frames", "must be in [1, 1000000]");
+  parseFrameRange(a.frameRange, a.frames, "--frame-range");
+  require(a.stallTimeout >= 0.0 && a.stallTimeout <= 1e9, "--stall-timeout",
+          "must be in [0, 1e9] seconds");
   mpi::parseCompositeStrategy(a.composite, "--composite");
   if (parseDistribution(a.distribute, "--distribute") == Distribution::kData) {
     require(!methodNamed(a.method, "--method").rendersFromStore(), "--distribute data",

@@ -32,26 +32,31 @@ Report::Report(const RenderArgs& a, const RenderOptions& options, const mpi::Gro
     : out_(a.out) {
   nlohmann::json summary = sceneSummary(scene);
   summary["loaded"] = sceneLoaded;  // false: rendered from the method's store, the scene unread
-  json_ = {{"lzb_version", "0.1"},
-           {"command", commandLine},
-           {"scene", summary},
-           {"method", a.method},
-           {"parameters",
-            {{"seed", a.seed},
-             {"quality", a.quality.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.quality)},
-             {"frames", a.frames},
-             {"composite", a.composite},
-             {"frame_groups", a.frameGroups},
-             {"distribute", a.distribute},
-             {"reference", a.reference.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.reference)},
-             {"subsamples", a.subsamples},
-             {"fov", a.fov},
-             {"near", a.nearPlane},
-             {"far", a.farPlane}}},
-           {"method_parameters", methodNamed(a.method, "--method").parameters()},
-           {"ranks", g.size},
-           {"threads", options.threads},
-           {"frames", nlohmann::json::array()}};
+  json_ = {
+      {"lzb_version", "0.1"},
+      {"command", commandLine},
+      {"scene", summary},
+      {"method", a.method},
+      {"method_exact", methodNamed(a.method, "--method").exact()},
+      {"parameters",
+       {{"seed", a.seed},
+        {"quality", a.quality.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.quality)},
+        {"frames", a.frames},
+        {"composite", a.composite},
+        {"frame_groups", a.frameGroups},
+        {"distribute", a.distribute},
+        {"regions", a.regions},
+        {"frame_range", a.frameRange},
+        {"resume", a.resume},
+        {"reference", a.reference.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.reference)},
+        {"subsamples", a.subsamples},
+        {"fov", a.fov},
+        {"near", a.nearPlane},
+        {"far", a.farPlane}}},
+      {"method_parameters", methodNamed(a.method, "--method").parameters()},
+      {"ranks", g.size},
+      {"threads", options.threads},
+      {"frames", nlohmann::json::array()}};
 }
 
 void Report::setMethod(const Renderer& method, const Renderer* reference) {
@@ -72,9 +77,13 @@ void Report::setWitness(const WitnessScene& witness) {
                       {"build_seconds", witness.buildSeconds()}};
 }
 
-void Report::addFrame(int frame, const Camera& camera, nlohmann::json entry, const Framebuffer& image) {
-  json_["width"] = camera.width();
-  json_["height"] = camera.height();
+void Report::setImageSize(int width, int height) {
+  json_["width"] = width;
+  json_["height"] = height;
+}
+
+nlohmann::json Report::frameEntry(int frame, const Camera& camera, nlohmann::json entry,
+                                  const Framebuffer& image) const {
   entry["frame"] = frame;
   entry["covered_pixels"] = image.coveredCount();
   entry["triangles"] = {{"unique", json_["scene"]["triangles_unique"]},
@@ -85,10 +94,26 @@ void Report::addFrame(int frame, const Camera& camera, nlohmann::json entry, con
                      {"fov", camera.fovyDegrees()},
                      {"near", camera.nearPlane()},
                      {"far", camera.farPlane()}};
-  json_["frames"].push_back(std::move(entry));
+  return entry;
 }
 
-void Report::setTotal(double seconds) {
+nlohmann::json Report::head() const {
+  nlohmann::json head = json_;
+  head.erase("frames");
+  head.erase("summary");
+  return head;
+}
+
+void Report::setFrames(std::vector<nlohmann::json> frames) {
+  json_["frames"] = std::move(frames);
+}
+
+void Report::setThroughput(double loopSeconds, size_t framesRendered) {
+  loopSeconds_ = loopSeconds;
+  framesRendered_ = framesRendered;
+}
+
+void Report::setTotal(double totalSeconds) {
   std::vector<double> times;
   double rate = 1.0;
   bool haveAccuracy = false;
@@ -101,12 +126,17 @@ void Report::setTotal(double seconds) {
   }
   double mean = 0.0;
   for (double t : times) mean += t / double(times.size());
-  json_["summary"] = {{"total_seconds", seconds},
+  json_["summary"] = {{"frames", times.size()},
                       {"mean_frame_seconds", mean},
-                      {"median_frame_seconds", median(times)},
-                      {"frame_loop_seconds", loopSeconds_},
-                      {"frames_per_second", loopSeconds_ > 0.0 ? double(times.size()) / loopSeconds_ : 0.0},
-                      {"peak_memory_bytes_root", peakMemoryBytes()}};
+                      {"median_frame_seconds", times.empty() ? 0.0 : median(times)}};
+  if (totalSeconds >= 0.0) {  // this run's own figures
+    nlohmann::json& s = json_["summary"];
+    s["total_seconds"] = totalSeconds;
+    s["frames_rendered"] = framesRendered_;
+    s["frame_loop_seconds"] = loopSeconds_;
+    s["frames_per_second"] = loopSeconds_ > 0.0 ? double(framesRendered_) / loopSeconds_ : 0.0;
+    s["peak_memory_bytes_root"] = peakMemoryBytes();
+  }
   if (haveAccuracy) json_["summary"]["min_correct_rate_covered"] = rate;
 }
 
@@ -131,7 +161,8 @@ void Report::printSummary(std::FILE* out) const {
                  json_["parameters"]["reference"].get<std::string>().c_str(),
                  s["min_correct_rate_covered"].get<double>());
   const std::string dir = std::filesystem::absolute(out_).string();
-  std::fprintf(out, "  images: %s/frame_%04d.png (.exr)%s\n", dir.c_str(), 0,
+  const int first = frames ? json_["frames"][0]["frame"].get<int>() : 0;
+  std::fprintf(out, "  images: %s/frame_%04d.png (.exr)%s\n", dir.c_str(), first,
                frames > 1 ? " ..." : "");
   std::fprintf(out, "  report: %s/report.json\n", dir.c_str());
 }

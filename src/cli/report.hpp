@@ -1,10 +1,12 @@
 #pragma once
 // report.json: parameters, per-frame and per-stage times (per rank), counts, peak memory and,
-// with a reference, accuracy. Built at the root rank.
+// with a reference, accuracy. Built at the root rank: the head as the run sets up, the frames from
+// the job's record (frame_record.hpp), so a resumed run and `lzb report` give every frame.
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "mpi/group.hpp"
 #include "raycast/exact/ray_witness.hpp"
@@ -20,6 +22,9 @@ class Report {
  public:
   Report(const RenderArgs& args, const RenderOptions& options, const mpi::Group& g,
          const SceneOutline& scene, bool sceneLoaded, const std::string& commandLine);
+  // A report of a record's head (job.json) whose images are in `out`.
+  Report(nlohmann::json head, std::string out) : json_(std::move(head)), out_(std::move(out)) {}
+  void setImageSize(int width, int height);
   // The distribution the run used (--distribute auto resolved): "replicate" or "data".
   void setDistribution(const std::string& used) { json_["distribution"] = used; }
   void setMethod(const Renderer& method, const Renderer* reference);
@@ -28,10 +33,17 @@ class Report {
   // How accuracy is witnessed: the rule and whose Embree scene it traces (its build is part of
   // setup_seconds when it is its own).
   void setWitness(const WitnessScene& witness);
-  void addFrame(int frame, const Camera& camera, nlohmann::json entry, const Framebuffer& image);
-  // Wall time of the frame loop (all frames, all frame groups): frames per second.
-  void setThroughput(double loopSeconds) { loopSeconds_ = loopSeconds; }
-  void setTotal(double seconds);
+  // Frame f's entry completed with its frame number, covered pixels, triangles and camera.
+  nlohmann::json frameEntry(int frame, const Camera& camera, nlohmann::json entry,
+                            const Framebuffer& image) const;
+  // Everything but the frames and the summary: what job.json keeps.
+  nlohmann::json head() const;
+  // The report's frames: every frame of the job's record (latestPerFrame).
+  void setFrames(std::vector<nlohmann::json> frames);
+  // Wall time of this run's frame loop (all frame groups) and the frames it rendered.
+  void setThroughput(double loopSeconds, size_t framesRendered);
+  // The summary over the frames; totalSeconds < 0: not a run (`lzb report`), no run figures.
+  void setTotal(double totalSeconds);
   void write(const std::filesystem::path& path) const;  // atomically
   void printSummary(std::FILE* out) const;
   const nlohmann::json& json() const { return json_; }
@@ -39,6 +51,7 @@ class Report {
  private:
   nlohmann::json json_;
   double loopSeconds_ = 0.0;
+  size_t framesRendered_ = 0;
   std::string out_;
 };
 

@@ -47,6 +47,9 @@ namespace {
 SweepGrid checkSweep(const SweepArgs& s) {
   const RenderArgs& a = s.render;
   require(!a.reference.empty(), "--reference", "lzb sweep judges against an exact method");
+  // A sweep keeps no frame record: its rows are rewritten after each combination instead.
+  require(a.frameRange.empty() && !a.resume && a.stallTimeout == 0.0,
+          "--frame-range/--resume/--stall-timeout", "are options of lzb render, not of lzb sweep");
   validateRenderArgs(a);
   SweepGrid grid = parseSweepGrid(s.params);
   checkSweepNames(grid, methodNamed(a.method, "--method"), *s.command);
