@@ -5,7 +5,8 @@ An uninterrupted 2-rank run of a short path is the reference. Then:
 - frame ranges 0:3 and 3:N written into one folder (the second by 2 frame groups) give the
   reference's files byte for byte, and a record of every frame;
 - 10 tries, on 2, 3 and 4 ranks and with 2 frame groups: one rank, chosen at random, is killed
-  with SIGKILL at a random instant (while setting up, rendering, compositing or writing). The job
+  with SIGKILL at a random instant (during the set-up, or a random time after a random frame was
+  recorded: while rendering, compositing or writing, at least 2 frames before the end). The job
   must end within 10 s with a non-zero status, every frame its record holds must be intact (the
   reference's bytes), and a --resume must leave the reference's files and one record per frame;
 - a --resume with another method, size or seed is refused with exit status 2 naming the field,
@@ -105,7 +106,7 @@ def main():
     for i, (ranks, groups) in enumerate(TRIES):
         out = os.path.join(work, f"killed{i}")
         p = launch(ranks, out, groups=groups)
-        time.sleep(rng.uniform(0.3, took))
+        wait_for_instant(p, out, rng.randrange(-1, FRAMES - 2), rng)
         victim = kill_one_rank(p, out, rng)
         killed_at = time.monotonic()
         try:
@@ -115,8 +116,8 @@ def main():
             fail(f"try {i}: the job still ran 30 s after rank {victim} was killed")
         ended = time.monotonic() - killed_at
         if victim is None:
-            print(f"try {i}: the run ended before the kill; resumed as it is")
-        elif p.returncode == 0 or ended > 10:
+            fail(f"try {i}: the run ended before the kill")
+        if p.returncode == 0 or ended > 10:
             fail(f"try {i}: rank {victim} killed, job ended {ended:.1f} s later with {p.returncode}")
         done = [r["frame"] for r in records(out)] if os.path.exists(
             os.path.join(out, "frames.jsonl")) else []
@@ -142,7 +143,7 @@ def main():
     p = subprocess.Popen([mpiexec, "--enable-recovery", "-n", "2", lzb, "render", SCENE, *COMMON,
                           "--stall-timeout", "3", "--out", out],
                          stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    time.sleep(took / 2)
+    wait_for_instant(p, out, 1, rng)
     victim = kill_one_rank(p, out, rng, rank=1)
     killed_at = time.monotonic()
     try:
@@ -188,13 +189,36 @@ def main():
     print("ok: a torn last line is left out by `lzb report` and cut off by --resume")
 
 
+def recorded_lines(out):
+    try:
+        with open(os.path.join(out, "frames.jsonl"), "rb") as f:
+            return f.read().count(b"\n")
+    except OSError:
+        return 0
+
+
+def wait_for_instant(p, out, frames_done, rng):
+    """Waits until `out`'s record holds frames_done + 1 frames, then a random part of a frame
+    (frames_done < 0: a random instant of the set-up), so the kill falls in a frame, a
+    composite, a write or the set-up of a job with at least 2 frames left, however loaded the
+    machine is."""
+    deadline = time.monotonic() + 120
+    if frames_done < 0:
+        while not rank_pids(out) and p.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.005)
+        time.sleep(rng.uniform(0.0, 0.3))
+        return
+    while recorded_lines(out) <= frames_done and p.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.002)
+    time.sleep(rng.uniform(0.0, 0.06))
+
+
 def snapshot(folder):
     return sorted((n, os.stat(os.path.join(folder, n)).st_mtime_ns) for n in os.listdir(folder))
 
 
-def kill_one_rank(p, out, rng, rank=None):
-    """SIGKILLs a rank (else a random one) of the job writing `out`; its rank, or None when none
-    is left."""
+def rank_pids(out):
+    """{rank: pid} of the lzb processes rendering into `out`."""
     ranks = {}
     for pid in os.listdir("/proc"):
         if not pid.isdigit():
@@ -210,6 +234,13 @@ def kill_one_rank(p, out, rng, rank=None):
             continue
         if b"OMPI_COMM_WORLD_RANK" in env:
             ranks[int(env[b"OMPI_COMM_WORLD_RANK"])] = int(pid)
+    return ranks
+
+
+def kill_one_rank(p, out, rng, rank=None):
+    """SIGKILLs a rank (else a random one) of the job writing `out`; its rank, or None when none
+    is left."""
+    ranks = rank_pids(out)
     if not ranks or p.poll() is not None:
         return None
     victim = rng.choice(sorted(ranks)) if rank is None else rank
