@@ -11,10 +11,13 @@ by 4 ranks in data mode each under the same limit, the image byte-identical to t
 Last, the composite's share of a 1920x1080 raycast frame (landscape of 1.0 M triangles, 6
 frames) on 2 and 4 ranks, replicated and in data mode.
 
-Usage: python3 runs/distribute/run.py [--quick] [--composite]   (from the repository root,
-       after scripts/build.sh; --composite: that part alone)
-Writes runs/distribute/ranks.csv (one row per configuration and rank), capacity.csv and
-composite.csv.
+And the hybrid's stages on 2 ranks x 1 thread, replicated, in data mode, and in data mode with a
+static plane (--plane 0.2): where the data-mode frame goes.
+
+Usage: python3 runs/distribute/run.py [--quick] [--composite | --stages]   (from the repository
+       root, after scripts/build.sh; --composite, --stages: that part alone)
+Writes runs/distribute/ranks.csv (one row per configuration and rank), capacity.csv,
+composite.csv and stages.csv.
 """
 import filecmp
 import json
@@ -27,7 +30,7 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402
 
-common.accept_args(flags=("--quick", "--composite"))
+common.accept_args(flags=("--quick", "--composite", "--stages"))
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 QUICK = "--quick" in sys.argv
@@ -154,15 +157,47 @@ def composite_study():
                      ["ranks", "mode", "frame_ms", "composite_ms", "composite_share"], commands)
 
 
+# The hybrid on 2 ranks x 1 thread: replicated, data (each region its own partition plane), and
+# data with a static plane (every region's plane at the same depth).
+STAGE_CONFIGS = [("replicate", []), ("data", []), ("data, --plane 0.2", ["--plane", "0.2"])]
+
+
+def stages_study():
+    """Where the hybrid's data-mode frame goes: median stage times and the work counts."""
+    rows, commands, stages = [], [], set()
+    for name, extra in STAGE_CONFIGS:
+        shown, rep = common.render(
+            SCENE, ["--method", "hybrid", "--frames", str(FRAMES), "--distribute",
+                    name.split(",")[0], *extra], ranks=2)
+        commands.append(shown)
+        frames = rep["frames"][1:]
+        row = {"config": name, "frame_ms": round(1000 * common.median(f["seconds"] for f in frames), 1)}
+        for count in ("near_triangles_drawn", "rays_cast", "pvl_size"):
+            row[count] = common.median(f["counts"].get(count, 0) for f in frames)
+        for stage in {k for f in frames for k in f["stages"]}:
+            row[stage + "_ms"] = round(1000 * common.median(f["stages"].get(stage, 0.0)
+                                                            for f in frames), 1)
+            stages.add(stage + "_ms")
+        rows.append(row)
+        print(row, flush=True)
+    common.write_csv(os.path.join(HERE, "stages.csv"), rows,
+                     ["config", "frame_ms", "near_triangles_drawn", "rays_cast", "pvl_size",
+                      *sorted(stages)], commands)
+
+
 def main():
     if "--composite" in sys.argv:
         composite_study()
+        return
+    if "--stages" in sys.argv:
+        stages_study()
         return
     work = tempfile.mkdtemp(prefix="lzb-distribute-")
     try:
         ranks_study(work)
         capacity_study(work)
         composite_study()
+        stages_study()
     finally:
         shutil.rmtree(work, ignore_errors=True)
 
