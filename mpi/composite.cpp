@@ -135,6 +135,29 @@ struct Keys<WideKey> {
   }
 };
 
+// One pixel with its colour, as compositeWithColour sends it.
+struct Pixel {
+  float depth;
+  Rgba8 color;
+  uint64_t id;
+};
+static_assert(sizeof(Pixel) == 16);
+
+// Whole pixels for the tiles' colour composite: merged in rank order, a higher rank's pixel
+// replaces the lower ranks' only when strictly nearer (the reduce's tie rule, nearerPixel).
+template <>
+struct Keys<Pixel> {
+  static Pixel of(const Framebuffer& fb, size_t i) { return {fb.depth[i], fb.color[i], fb.id[i]}; }
+  static void put(Framebuffer& fb, size_t i, const Pixel& p) {
+    fb.depth[i] = p.depth;
+    fb.color[i] = p.color;
+    fb.id[i] = p.id;
+  }
+  static Pixel min(const Pixel& lower, const Pixel& higher) {
+    return nearer(higher.depth, higher.id, lower.depth, lower.id) ? higher : lower;
+  }
+};
+
 // The keys of r, row by row.
 template <class K>
 void pack(const Framebuffer& fb, const Rect& r, K* out) {
@@ -406,14 +429,6 @@ double composite(const Group& g, Framebuffer& fb, CompositeStrategy s) {
   }
 }
 
-// One pixel with its colour, as compositeWithColour sends it.
-struct Pixel {
-  float depth;
-  Rgba8 color;
-  uint64_t id;
-};
-static_assert(sizeof(Pixel) == 16);
-
 // in is the lower ranks' side (the operator is declared non-commutative, so MPI applies it in
 // rank order): on equal (depth, id) the lower rank's pixel stays. Colour is not in the key, and
 // an empty pixel may carry colour (rzb's Gaussian reconstruction spreads it past the geometry),
@@ -437,10 +452,15 @@ CompositeStats compositeAtRoot(const Group& g, Framebuffer& fb, CompositeStrateg
   return stats;
 }
 
-CompositeStats compositeWithColour(const Group& g, Framebuffer& fb) {
+CompositeStats compositeWithColour(const Group& g, Framebuffer& fb, CompositeStrategy strategy) {
   CompositeStats stats;
   if (g.size == 1) return stats;
   Stopwatch clock;
+  if (strategy == CompositeStrategy::kTiles) {
+    stats.bytesSent = tileSend<Pixel>(g, fb);
+    stats.seconds = clock.seconds();
+    return stats;
+  }
   const size_t n = fb.size();
   std::vector<Pixel> mine(n), result(g.root() ? n : 0);
 #pragma omp parallel for schedule(static)

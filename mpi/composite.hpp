@@ -13,8 +13,9 @@
 //           union to the stripe's owner, which reduces it; then the stripes are gathered;
 //   tiles   each rank sends its touched 16 x 16 tiles straight to the root, which reduces them
 //           (cheapest where ranks own disjoint tiles).
-// Renderers whose colour is not a function of the IDs (rzb's Gaussian reconstruction) composite
-// whole 16-byte pixels with compositeWithColour, equal (depth, ID) keeping the lower rank's.
+// Renderers whose colour is not a function of the IDs (rzb's Gaussian reconstruction, the regions
+// of --distribute data) composite whole 16-byte pixels with compositeWithColour, equal (depth, ID)
+// keeping the lower rank's: by touched tiles with `tiles`, else by MPI_Reduce of the frame.
 #include <string>
 
 #include "mpi/group.hpp"
@@ -38,7 +39,8 @@ struct CompositeStats {
 CompositeStats compositeAtRoot(const Group& g, Framebuffer& fb, CompositeStrategy strategy,
                                bool wide);
 
-// The same with colour carried along (16-byte pixels through MPI_Reduce over the whole frame).
-CompositeStats compositeWithColour(const Group& g, Framebuffer& fb);
+// The same with colour carried along, as 16-byte pixels: with kTiles each rank's touched tiles to
+// the root (merged in rank order), with the other strategies MPI_Reduce over the whole frame.
+CompositeStats compositeWithColour(const Group& g, Framebuffer& fb, CompositeStrategy strategy);
 
 }  // namespace lzb::mpi

@@ -84,7 +84,7 @@ nlohmann::json FrameDriver::render(Renderer& renderer, const Camera& camera, int
   const bool fromIds = renderer.colourFromIds();
   const CompositeStats composite =
       fromIds ? compositeAtRoot(g, fb, strategy_, scene_.expandedTriangles() > 0xffffffffull)
-              : compositeWithColour(g, fb);
+              : compositeWithColour(g, fb, strategy_);
   stats.addStage("composite", composite.seconds);
   if (fromIds && g.root()) {
     Stopwatch shading;
