@@ -11,17 +11,11 @@ good=(render "builtin:city?blocks=2" --quiet --threads 1 --out "$out")
 missing=(render "$work/missing.ply" --quiet --threads 1 --out "$out")
 busy=(render "builtin:city?blocks=40" --method lzb --quiet --threads 1 --out "$out")
 
+source "$(dirname "$0")/support/expect_job_exit2.sh"
 expect_failure() {  # name, then the mpiexec arguments
   local name="$1"
   shift
-  local start=$SECONDS status=0
-  msg=$(timeout 120 "$mpiexec" --oversubscribe "$@" 2>&1) || status=$?
-  local took=$((SECONDS - start))
-  [ "$status" -eq 2 ] || { echo "FAIL: $name exited $status (want 2): $msg"; exit 1; }
-  [ "$took" -le 30 ] || { echo "FAIL: $name took $took s"; exit 1; }
-  grep -q "missing.ply" <<<"$msg" || { echo "FAIL: $name does not name the file: $msg"; exit 1; }
-  [ ! -e "$out" ] || { echo "FAIL: $name wrote $out"; exit 1; }
-  echo "ok: $name exited 2 in $took s"
+  expect_job_exit2 "$name" "$out" "missing.ply" -- "$@"
 }
 
 expect_failure "rank 1 fails" -n 1 "$lzb" "${good[@]}" : -n 1 "$lzb" "${missing[@]}"

@@ -19,18 +19,11 @@ SH
 chmod +x "$work/limit.sh"
 limit=("$work/limit.sh")
 
+source "$(dirname "$0")/support/expect_job_exit2.sh"
 expect_refusal() {  # name, what the message must say, then the mpiexec arguments
   local name="$1" says="$2"
   shift 2
-  local start=$SECONDS status=0
-  msg=$(timeout 120 "$mpiexec" --oversubscribe "$@" 2>&1) || status=$?
-  local took=$((SECONDS - start))
-  [ "$status" -eq 2 ] || { echo "FAIL: $name exited $status (want 2): $msg"; exit 1; }
-  [ "$took" -le 30 ] || { echo "FAIL: $name took $took s"; exit 1; }
-  grep -q "needs an estimated" <<<"$msg" || { echo "FAIL: $name gives no estimate: $msg"; exit 1; }
-  grep -q -- "$says" <<<"$msg" || { echo "FAIL: $name does not say '$says': $msg"; exit 1; }
-  [ ! -e "$out" ] || { echo "FAIL: $name wrote $out"; exit 1; }
-  echo "ok: $name exited 2 in $took s"
+  expect_job_exit2 "$name" "$out" "needs an estimated" "$says" -- "$@"
 }
 
 # 1.1 GiB of address space: the process starts, the whole scene's estimate does not fit.
