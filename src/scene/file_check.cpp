@@ -70,18 +70,21 @@ void checkPly(const std::filesystem::path& path, const std::string& data) {
     for (const PlyElement& e : elements)
       for (uint64_t i = 0; i < e.count; ++i)
         for (const PlyProperty& p : e.properties) {
-          require(tokens.next(t), where,
-                  "truncated: PLY data ends inside element '" + e.name + "' " + std::to_string(i) +
-                      " of " + std::to_string(e.count));
+          require(tokens.next(t), where, [&] {
+            return "truncated: PLY data ends inside element '" + e.name + "' " + std::to_string(i) +
+                   " of " + std::to_string(e.count);
+          });
           if (!p.list) continue;
           uint64_t items = 0;
           const auto r = std::from_chars(t.data(), t.data() + t.size(), items);
-          require(r.ec == std::errc() && r.ptr == t.data() + t.size(), where,
-                  "malformed PLY list count '" + std::string(t) + "' in element '" + e.name + "'");
+          require(r.ec == std::errc() && r.ptr == t.data() + t.size(), where, [&] {
+            return "malformed PLY list count '" + std::string(t) + "' in element '" + e.name + "'";
+          });
           for (uint64_t k = 0; k < items; ++k)
-            require(
-                tokens.next(t), where,
-                "truncated: PLY data ends inside element '" + e.name + "' " + std::to_string(i));
+            require(tokens.next(t), where, [&] {
+              return "truncated: PLY data ends inside element '" + e.name + "' " +
+                     std::to_string(i);
+            });
         }
     return;
   }
@@ -106,9 +109,10 @@ void checkPly(const std::filesystem::path& path, const std::string& data) {
     for (uint64_t i = 0; i < e.count; ++i)
       for (const PlyProperty& p : e.properties) {
         const auto need = [&](uint64_t n) {
-          require(n <= end - at, where,
-                  "truncated: PLY binary data ends inside element '" + e.name + "' " +
-                      std::to_string(i) + " of " + std::to_string(e.count));
+          require(n <= end - at, where, [&] {
+            return "truncated: PLY binary data ends inside element '" + e.name + "' " +
+                   std::to_string(i) + " of " + std::to_string(e.count);
+          });
         };
         const uint64_t size = uint64_t(plyTypeBytes(p.type));
         if (!p.list) {
@@ -121,9 +125,10 @@ void checkPly(const std::filesystem::path& path, const std::string& data) {
         const uint64_t items = readUnsigned(bytes + at, countSize, big);
         at += uint64_t(countSize);
         // Divided, not multiplied: a count near 2^32 must not wrap.
-        require(items <= (end - at) / size, where,
-                "truncated: PLY binary data ends inside element '" + e.name + "' " +
-                    std::to_string(i) + " of " + std::to_string(e.count));
+        require(items <= (end - at) / size, where, [&] {
+          return "truncated: PLY binary data ends inside element '" + e.name + "' " +
+                 std::to_string(i) + " of " + std::to_string(e.count);
+        });
         at += items * size;
       }
   }
@@ -148,7 +153,8 @@ void checkOff(const std::filesystem::path& path, const std::string& data) {
     while (std::getline(in, line)) {
       require(!body || line.find_first_not_of(" \t\r") == std::string::npos ||
                   line[line.find_first_not_of(" \t\r")] != '#',
-              where, "a comment line among the OFF vertices or faces: '" + line + "'");
+              where,
+              [&] { return "a comment line among the OFF vertices or faces: '" + line + "'"; });
       line = line.substr(0, line.find('#'));
       std::istringstream s(line);
       words.clear();
@@ -177,31 +183,37 @@ void checkOff(const std::filesystem::path& path, const std::string& data) {
   }
   body = true;
   for (uint64_t v = 0; v < counts[0]; ++v)
-    require(nextLine(words), where,
-            "truncated: the header promises " + std::to_string(counts[0]) +
-                " vertices, the file has " + std::to_string(v));
+    require(nextLine(words), where, [&] {
+      return "truncated: the header promises " + std::to_string(counts[0]) +
+             " vertices, the file has " + std::to_string(v);
+    });
   for (uint64_t f = 0; f < counts[1]; ++f) {
-    require(nextLine(words), where,
-            "truncated: the header promises " + std::to_string(counts[1]) +
-                " faces, the file has " + std::to_string(f));
+    require(nextLine(words), where, [&] {
+      return "truncated: the header promises " + std::to_string(counts[1]) +
+             " faces, the file has " + std::to_string(f);
+    });
     uint64_t k = 0;
     const auto r = std::from_chars(words[0].data(), words[0].data() + words[0].size(), k);
     // k < size, not size >= k + 1: a face size near 2^64 must not wrap.
     require(r.ec == std::errc() && k < words.size(), where,
-            "malformed OFF face " + std::to_string(f) + ": '" + line + "'");
+            [&] { return "malformed OFF face " + std::to_string(f) + ": '" + line + "'"; });
     // assimp's OFF reader crashes on a face of no vertices and drops one of more than 9.
-    require(k > 0, where, "malformed OFF face " + std::to_string(f) + ": it has no vertices");
-    require(k <= 9, where,
-            "OFF face " + std::to_string(f) + " has " + std::to_string(k) +
-                " vertices; the reader (assimp) takes at most 9");
+    require(k > 0, where,
+            [&] { return "malformed OFF face " + std::to_string(f) + ": it has no vertices"; });
+    require(k <= 9, where, [&] {
+      return "OFF face " + std::to_string(f) + " has " + std::to_string(k) +
+             " vertices; the reader (assimp) takes at most 9";
+    });
     // assimp clamps an index past the vertices to the last vertex, silently.
     for (uint64_t i = 1; i <= k; ++i) {
       uint64_t index = 0;
       const std::string& w = words[size_t(i)];
       const auto ri = std::from_chars(w.data(), w.data() + w.size(), index);
       require(ri.ec == std::errc() && ri.ptr == w.data() + w.size() && index < counts[0], where,
-              "malformed OFF face " + std::to_string(f) + ": vertex index '" + w + "' is not one of the " +
-                  std::to_string(counts[0]) + " vertices");
+              [&] {
+                return "malformed OFF face " + std::to_string(f) + ": vertex index '" + w +
+                       "' is not one of the " + std::to_string(counts[0]) + " vertices";
+              });
     }
   }
 }

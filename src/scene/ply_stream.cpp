@@ -75,7 +75,7 @@ class PlyReader {
       pos_ += size_t(n);
       return;
     }
-    require(n <= size_ - offset(), where_, truncated());
+    require(n <= size_ - offset(), where_, [this] { return truncated(); });
     seek(offset() + n);
   }
   std::string truncated() const {
@@ -96,7 +96,7 @@ class PlyReader {
   }
   void bytes(unsigned char* out, size_t n) {
     if (n > len_ - pos_) refill();
-    require(n <= len_ - pos_, where_, truncated());
+    require(n <= len_ - pos_, where_, [this] { return truncated(); });
     std::memcpy(out, buffer_.data() + pos_, n);
     pos_ += n;
   }
@@ -198,9 +198,10 @@ float normalisedColour(double v, PlyType t) {
 // A list's count (signed counts must not be negative).
 uint64_t listCount(PlyReader& in, const PlyProperty& p, const std::string& where, uint64_t i) {
   const double n = in.scalar(p.countType);
-  require(n >= 0.0, where,
-          "malformed: PLY list '" + p.name + "' of element " + std::to_string(i) +
-              " has a negative count");
+  require(n >= 0.0, where, [&] {
+    return "malformed: PLY list '" + p.name + "' of element " + std::to_string(i) +
+           " has a negative count";
+  });
   return uint64_t(n);
 }
 
@@ -340,15 +341,17 @@ LoadStats PlyMeshStream::readFaces(PlyReader& in, const std::function<void(const
         continue;
       }
       const uint64_t n = listCount(in, p, where_, f);
-      require(n > 0, where_,
-              "malformed or truncated: face " + std::to_string(f) + " has no vertices");
+      require(n > 0, where_, [&] {
+        return "malformed or truncated: face " + std::to_string(f) + " has no vertices";
+      });
       index.resize(size_t(n));
       for (uint32_t& i : index) {
         const double v = in.scalar(p.type);
         i = uint32_t(int64_t(v));  // as assimp converts: a negative index wraps, out of range
-        require(i < vertices, where_,
-                "malformed: face " + std::to_string(f) + " uses vertex " + std::to_string(i) +
-                    " of " + std::to_string(vertices));
+        require(i < vertices, where_, [&] {
+          return "malformed: face " + std::to_string(f) + " uses vertex " + std::to_string(i) +
+                 " of " + std::to_string(vertices);
+        });
       }
     }
     face.polygon.clear();
