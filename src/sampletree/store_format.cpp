@@ -52,11 +52,13 @@ void checkNodes(std::span<const TreeNode> nodes, uint64_t triangles, const std::
   uint64_t next = 0;
   for (size_t i = 0; i < nodes.size(); ++i) {
     const TreeNode& n = nodes[i];
-    const std::string node = "node " + std::to_string(i) + ": ";
-    require(n.subtreeEnd > i && n.subtreeEnd <= nodes.size(), where, node + "bad subtree end");
+    const auto bad = [i](const char* what) {
+      return [i, what] { return "node " + std::to_string(i) + ": " + what; };
+    };
+    require(n.subtreeEnd > i && n.subtreeEnd <= nodes.size(), where, bad("bad subtree end"));
     require(n.firstTriangle == next && n.triangleCount <= triangles - next, where,
-            node + "bad triangle range");
-    require(n.level <= 20, where, node + "bad level");
+            bad("bad triangle range"));
+    require(n.level <= 20, where, bad("bad level"));
     next += n.triangleCount;
   }
   require(next == triangles, where, "the nodes do not hold every triangle");

@@ -88,14 +88,16 @@ void FileLoader::validate(const aiScene& ai) {
     const aiMesh& mesh = *ai.mMeshes[m];
     for (unsigned f = 0; f < mesh.mNumFaces; ++f) {
       const aiFace& face = mesh.mFaces[f];
-      require(face.mNumIndices > 0, where_,
-              "malformed or truncated: face " + std::to_string(f) + " of mesh " +
-                  std::to_string(m) + " has no vertices");
+      require(face.mNumIndices > 0, where_, [&] {
+        return "malformed or truncated: face " + std::to_string(f) + " of mesh " +
+               std::to_string(m) + " has no vertices";
+      });
       for (unsigned k = 0; k < face.mNumIndices; ++k)
-        require(face.mIndices[k] < mesh.mNumVertices, where_,
-                "malformed: face " + std::to_string(f) + " of mesh " + std::to_string(m) +
-                    " uses vertex " + std::to_string(face.mIndices[k]) + " of " +
-                    std::to_string(mesh.mNumVertices));
+        require(face.mIndices[k] < mesh.mNumVertices, where_, [&] {
+          return "malformed: face " + std::to_string(f) + " of mesh " + std::to_string(m) +
+                 " uses vertex " + std::to_string(face.mIndices[k]) + " of " +
+                 std::to_string(mesh.mNumVertices);
+        });
     }
   }
 }
