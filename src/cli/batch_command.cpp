@@ -1,6 +1,5 @@
 #include "src/cli/batch_command.hpp"
 
-#include <fstream>
 #include <sstream>
 
 #include "mpi/failure.hpp"
@@ -9,6 +8,7 @@
 #include "src/cli/render_setup.hpp"
 #include "src/core/error.hpp"
 #include "src/core/progress.hpp"
+#include "src/core/whole_file.hpp"
 
 namespace lzb {
 
@@ -52,14 +52,6 @@ std::vector<std::string> splitWords(const std::string& line, const std::string& 
   return words;
 }
 
-std::string readBatchFile(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file + ": cannot read the batch file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 }  // namespace
 
 std::vector<BatchJob> splitBatch(const std::string& text, const std::string& name) {
@@ -101,7 +93,7 @@ int runBatch(const BatchArgs& a, const mpi::Group& g) {
   std::vector<BatchJob> jobs;
   // Every line is parsed and its --out checked before any job runs, so a bad line writes nothing.
   mpi::agree(g, [&] {
-    jobs = splitBatch(readBatchFile(a.file), a.file);
+    jobs = splitBatch(readWholeFile(a.file, "cannot read the batch file"), a.file);
     require(!jobs.empty(), a.file, "holds no render line");
     for (const BatchJob& job : jobs) {
       const RenderArgs args = parseBatchJob(job, a.file);

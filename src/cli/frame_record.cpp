@@ -5,11 +5,11 @@
 
 #include <cerrno>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <sstream>
 
 #include "src/core/error.hpp"
+#include "src/core/whole_file.hpp"
 #include "src/image/frame_io.hpp"
 
 namespace lzb {
@@ -23,13 +23,6 @@ int wholeNumber(const std::string& text) {
   if (text.empty() || text.size() > 9 || text.find_first_not_of("0123456789") != std::string::npos)
     return -1;
   return std::stoi(text);
-}
-
-std::string slurp(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
 }
 
 // The record's JSON object, or null when the line is not one.
@@ -66,7 +59,7 @@ std::vector<nlohmann::json> readFrameRecords(const fs::path& file) {
   std::vector<nlohmann::json> records;
   std::error_code ec;
   if (!fs::exists(file, ec)) return records;
-  const std::string text = slurp(file);
+  const std::string text = readWholeFile(file, "cannot be read");
   std::istringstream lines(text.substr(0, wholeLength(text)));
   std::string line;
   for (int number = 1; std::getline(lines, line); ++number) {
@@ -81,7 +74,7 @@ std::vector<nlohmann::json> readFrameRecords(const fs::path& file) {
 void trimTornLine(const fs::path& file) {
   std::error_code ec;
   if (!fs::exists(file, ec)) return;
-  const std::string text = slurp(file);
+  const std::string text = readWholeFile(file, "cannot be read");
   const size_t keep = wholeLength(text);
   if (keep != text.size()) fs::resize_file(file, keep, ec);
   require(!ec, file.string(), "cannot cut its torn last line: " + ec.message());

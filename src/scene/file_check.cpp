@@ -4,25 +4,17 @@
 #include <cctype>
 #include <charconv>
 #include <cstdint>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "src/core/error.hpp"
+#include "src/core/whole_file.hpp"
 #include "src/scene/ply_header.hpp"
 
 namespace lzb {
 
 namespace {
-
-std::string readAll(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  require(bool(in), path.string(), "cannot be opened");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return std::move(s).str();
-}
 
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(),
@@ -285,7 +277,7 @@ void checkGlb(const std::filesystem::path& path, const std::string& data) {
 void checkMeshFileComplete(const std::filesystem::path& path) {
   const std::string ext = lower(path.extension().string());
   if (ext != ".ply" && ext != ".off" && ext != ".stl" && ext != ".glb") return;
-  const std::string data = readAll(path);
+  const std::string data = readWholeFile(path);
   if (ext == ".ply") {
     require(data.compare(0, 3, "ply") == 0, path.string(), "not a PLY file (no 'ply' magic)");
     checkPly(path, data);
