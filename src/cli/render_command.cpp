@@ -188,7 +188,7 @@ void renderFrames(const RenderArgs& a, const mpi::Group& world, const mpi::SubGr
         entry["files"] = frameFiles(a.out, f);  // the record is appended once they are in place
         record->append(entry);
         seconds.push_back(entry["seconds"].get<double>());
-        progress.add(1, medianNote(seconds));
+        progress.add(1, [&seconds] { return medianNote(seconds); });
       } else if (world.rank == from) {
         sendFrame(world, 0, mine);
       }

@@ -15,7 +15,7 @@ void Progress::add(uint64_t n) {
   if (clock_.seconds() - lastPrint_ >= 0.25) print(false);
 }
 
-void Progress::add(uint64_t n, std::string note) {
+void Progress::add(uint64_t n, std::function<std::string()> note) {
   if (!enabled_) return;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -37,7 +37,7 @@ void Progress::print(bool final) {
   lastPrint_ = clock_.seconds();
   const double pct = total_ ? 100.0 * double(count_) / double(total_) : 100.0;
   // Time left at the rate so far; padded so a shorter line covers the longer one before it.
-  std::string tail = note_.empty() ? "" : ", " + note_;
+  std::string tail = note_ ? ", " + note_() : "";
   if (!final && count_ > 0 && count_ < total_) {
     char left[48];
     std::snprintf(left, sizeof(left), ", about %.0fs left",
