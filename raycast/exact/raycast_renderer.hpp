@@ -1,7 +1,6 @@
 #pragma once
-// --method raycast: the exact Embree reference. One primary ray per pixel centre from the camera
-// position, t in [near, far] (t is the view depth), nearest hit's depth and expanded ID, colour
-// from the IDs through shadeFromIds.
+// --method raycast: the exact Embree reference, every frame cast by castEveryPixel
+// (pixel_cast.hpp), colour from the IDs through shadeFromIds.
 #include <string>
 
 #include "raycast/exact/embree_scene.hpp"
@@ -33,7 +32,6 @@ class RaycastRenderer : public Renderer {
   RenderOptions options_;
   RaycastTuning tuning_;
   EmbreeScene embree_;
-  Bounds held_;  // world box of what embree_ holds: no ray beyond its projection
 };
 
 }  // namespace lzb

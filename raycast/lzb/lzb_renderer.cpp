@@ -148,12 +148,18 @@ void LzbRenderer::cull(Frame& f, double farDepth) {
   cullScene(*accel_, *f.camera, culled_, options_.threads, f.leafFilter, farDepth);
 }
 
+const CoarseHits& LzbRenderer::castCoarseRays(Frame& f) const {
+  if (!f.coarse) {
+    CoarseHits& cast = f.coarse.emplace();
+    cast.mean = PartitionPlane::coarseRayCast(*embree_, *f.camera, lzb_.planeGrid, &cast.depths,
+                                              options_.threads);
+  }
+  return *f.coarse;
+}
+
 double LzbRenderer::medianCoarseHit(Frame& f) const {
-  const Camera& camera = *f.camera;
-  CoarseHits& cast = f.coarse.emplace();
-  cast.mean = PartitionPlane::coarseRayCast(*embree_, camera, lzb_.planeGrid, &cast.depths,
-                                            options_.threads);
-  if (cast.depths.empty()) return camera.farPlane();
+  const CoarseHits& cast = castCoarseRays(f);
+  if (cast.depths.empty()) return f.camera->farPlane();
   std::vector<double> hits = cast.depths;  // reordered below; the plane gets them as cast
   const auto mid = hits.begin() + std::ptrdiff_t(hits.size() / 2);
   std::nth_element(hits.begin(), mid, hits.end());

@@ -84,8 +84,9 @@ class LzbRenderer : public Renderer {
   // 1. Hierarchical view-frustum culling of the octrees (up to view depth farDepth when it is
   // nearer than the camera's far plane: a composing method's partial cull).
   void cull(Frame& f, double farDepth = std::numeric_limits<double>::infinity());
-  // The median view depth of the plane's coarse rays' hits (camera far without any hit); the
-  // rays are kept in f.coarse for the plane.
+  // The plane's coarse rays for this frame, cast once and kept in f.coarse for the plane.
+  const CoarseHits& castCoarseRays(Frame& f) const;
+  // The median view depth of the coarse rays' hits (camera far without any hit).
   double medianCoarseHit(Frame& f) const;
   // 2. The partition plane z_clip.
   void placePlane(Frame& f);
@@ -123,6 +124,7 @@ class LzbRenderer : public Renderer {
   // straight into the frame, nothing copied).
   void keepNearPass(bool keep) { keepNearPass_ = keep; }
   const LzbAccel& accel() const { return *accel_; }
+  const EmbreeScene& embree() const { return *embree_; }
   const CulledScene& culled() const { return culled_; }
   // The unfinished pixels of the last near pass (1), per pixel.
   const std::vector<uint8_t>& unfinishedMask() const { return open_; }

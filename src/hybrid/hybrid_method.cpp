@@ -41,6 +41,12 @@ class HybridMethod : public Method {
                  "triangles per pixel; lazy wherever a mesh or subtree is sampled whole (a direct "
                  "frame samples nothing)")
         ->capture_default_str();
+    c.add_option("--frame-way", frameWay_,
+                 "hybrid: draw each frame by local z-buffering with the point pass (local), by "
+                 "casting every pixel as --method raycast does (rays), or auto: rays when the "
+                 "frame's probe finds as many triangles in front of its nearest coarse hits as "
+                 "covered pixels")
+        ->capture_default_str();
   }
   void validate() override {
     params_.oversample = oversample_;
@@ -56,6 +62,7 @@ class HybridMethod : public Method {
     localz::parsePlane(plane_, "--plane", params_.lzb);
     params_.lzb.tileDeal = parseTileDeal(tileDeal_, "--tile-deal");
     params_.farPass = hybrid::parseFarPass(farPass_, "--far-pass");
+    params_.frameWay = hybrid::parseFrameWay(frameWay_, "--frame-way");
     params_.validate();
   }
   // runs/tradeoff/README.md "Presets".
@@ -72,7 +79,7 @@ class HybridMethod : public Method {
  private:
   double oversample_ = 1.0;
   std::string fallback_ = "auto", backfaces_ = "drop", plane_ = "cost", tileDeal_ = "interleaved",
-              farPass_ = "auto";
+              farPass_ = "auto", frameWay_ = "auto";
   hybrid::HybridParams params_;
 };
 

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "mpi/decomposition.hpp"
+#include "raycast/exact/pixel_cast.hpp"
 #include "src/core/error.hpp"
 #include "src/core/timer.hpp"
 #include "src/splat/splatter.hpp"
@@ -30,6 +31,17 @@ std::string toString(FarPass p) {
   return p == FarPass::kAuto ? "auto" : p == FarPass::kLazy ? "lazy" : "direct";
 }
 
+FrameWay parseFrameWay(const std::string& text, const std::string& field) {
+  if (text == "auto") return FrameWay::kAuto;
+  if (text == "local") return FrameWay::kLocal;
+  if (text == "rays") return FrameWay::kRays;
+  throw InputError(field + ": expected auto, local or rays, got '" + text + "'");
+}
+
+std::string toString(FrameWay w) {
+  return w == FrameWay::kAuto ? "auto" : w == FrameWay::kLocal ? "local" : "rays";
+}
+
 PointParams HybridParams::pointParams(int width, int height) const {
   const double lnPixels = std::log(double(width) * double(height));
   PointParams p;
@@ -48,6 +60,7 @@ nlohmann::json HybridParams::toJson() const {
           {"plane", lzb.dynamicPlane() ? nlohmann::json(lzb.costPlane ? "cost" : "auto")
                                        : nlohmann::json(lzb.planeFraction)},
           {"far_pass", toString(farPass)},
+          {"frame_way", toString(frameWay)},
           {"lzb_stage", toString(lzb.stage)},
           {"tile_deal", toString(lzb.tileDeal)}};
 }
@@ -103,6 +116,16 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
                                             pp.thresholdPx);
   f.leafFilter = rule_.get();  // the cull leaves wholly sampled nodes out
   Stopwatch clock;
+  const bool everyPixel = params_.frameWay == FrameWay::kRays ||
+                          (params_.frameWay == FrameWay::kAuto && castEveryPixelPays(f, stats));
+  stats.setShared("every_pixel_cast", everyPixel ? 1.0 : 0.0);
+  if (params_.frameWay == FrameWay::kAuto) stats.addStage("probe", clock.lap());
+  if (everyPixel) {
+    stats.addCount("rays_cast",
+                   double(castEveryPixel(lzb_.embree(), camera, share, fb, options_.threads)));
+    stats.addStage("trace", clock.lap());
+    return;
+  }
   double culledTriangles = -1.0;
   const double cullDepth = cullForFarPass(f, &culledTriangles);
   f.directRays = directRaysPay(camera, culledTriangles);
@@ -136,6 +159,41 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
   stats.addStage("combine", clock.lap());
   lzb_.countFrame(f, stats);
   if (cullDepth < camera.farPlane()) stats.setShared("cull_depth", cullDepth);
+}
+
+bool HybridRenderer::castEveryPixelPays(localz::LzbRenderer::Frame& f, FrameStats& stats) {
+  const Camera& camera = *f.camera;
+  const localz::CoarseHits& coarse = lzb_.castCoarseRays(f);
+  if (coarse.depths.empty()) return true;  // nothing met: no near pass would finish a pixel
+  // The probe's plane: the coarse hit with kProbeQuantile of the hits in front of it.
+  std::vector<double> hits = coarse.depths;
+  const size_t k = size_t(double(hits.size() - 1) * HybridParams::kProbeQuantile);
+  std::nth_element(hits.begin(), hits.begin() + std::ptrdiff_t(k), hits.end());
+  const double depth = hits[k];
+  const double pixelsPerRay =
+      double(camera.width()) * double(camera.height()) / double(coarse.mean.coarseRays);
+  const double finished = double(k + 1) * pixelsPerRay;  // pixels its near pass would finish
+  stats.setShared("probe_depth", depth);
+  stats.setShared("probe_finished_pixels", finished);
+  // Fewer triangles than that in the whole scene: the probe's plane pays, whatever it culls.
+  if (double(scene_.expandedTriangles()) < finished) return false;
+  lzb_.cull(f, depth);
+  uint64_t triangles = 0;
+  for (const localz::CullPath& p : lzb_.culled().paths) {
+    // A unit the point pass takes whole sends the far rays through the octree walk, which loses
+    // to Embree's (the chessboard: 540 against 112 ms a frame, runs/peers).
+    if (p.drawnElsewhere || p.subtree) {
+      stats.setShared("probe_sampled_unit", 1.0);
+      return true;
+    }
+    triangles += p.leafTriangles;
+  }
+  stats.setShared("probe_triangles", double(triangles));
+  // The cost plane's comparison (lzb_plane.hpp) of the probe's plane with casting every pixel,
+  // a near triangle costing as much as a direct ray: triangles shrink on screen with depth, so
+  // the nearest covered pixels are the cheapest a near pass finishes, and no plane beyond pays
+  // when this one does not.
+  return double(triangles) >= finished;
 }
 
 double HybridRenderer::cullForFarPass(localz::LzbRenderer::Frame& f, double* triangles) {

@@ -33,6 +33,13 @@ enum class FarPass { kAuto, kLazy, kDirect };
 FarPass parseFarPass(const std::string& text, const std::string& field);
 std::string toString(FarPass p);
 
+// How a frame is drawn: local z-buffering with the point pass (the stages above), or every pixel
+// cast by Embree as --method raycast does (pixel_cast.hpp), or the cheaper of the two by the
+// frame's probe (castEveryPixelPays).
+enum class FrameWay { kAuto, kLocal, kRays };
+FrameWay parseFrameWay(const std::string& text, const std::string& field);
+std::string toString(FrameWay w);
+
 struct HybridParams {
   double oversample = 1.0;   // scales the ln(pixels) samples per pixel of projected area
   int splat = 1;             // d
@@ -50,6 +57,13 @@ struct HybridParams {
   // (lzb final against naive, 2 threads: paper city 6.4 per pixel 7.4 vs 8.7 ms; the city at
   // 200 x 200, 43: 3.3 vs 2.7; forest 1080p, 33: 122 vs 88; forest 640 x 480, 182: 39 vs 31).
   static constexpr double kDirectTrianglesPerPixel = 16.0;
+  FrameWay frameWay = FrameWay::kAuto;
+  // The probe's depth: the coarse hit nearer than all but this share of the hits. A plane in
+  // front of it finishes at most this share of the covered pixels, so when the leaves in front
+  // of it hold as many triangles as the covered pixels, casting every pixel costs at most this
+  // share of the image more than the best plane (the cost plane's units: a near triangle as
+  // much as a direct ray).
+  static constexpr double kProbeQuantile = 1.0 / 16.0;
   // The local z-buffering stages (final stage, native z-buffers); its far rays walk the octrees
   // in frames where the point pass takes leaves (only the walk skips them), else are Embree's.
   localz::LzbOptions lzb;
@@ -73,6 +87,10 @@ class HybridRenderer : public Renderer {
   const localz::LzbRenderer& lzb() const { return lzb_; }
 
  private:
+  // Step 0 (--frame-way auto): whether casting every pixel costs no more than the best local
+  // z-buffering frame. Casts the coarse rays (kept for the plane) and culls up to the probe's
+  // depth (kProbeQuantile); sets the probe's figures in stats.
+  bool castEveryPixelPays(localz::LzbRenderer::Frame& f, FrameStats& stats);
   // Step 2: the sampled leaves of this frame, this rank's share splatted into points_.
   void drawPoints(localz::LzbRenderer::Frame& f, const PointParams& pp, int frame,
                   FrameStats& stats);

@@ -44,8 +44,15 @@ const Scene* field() {
 // The point pass exercised at these small sizes: rzb's threshold d^2 / ln(pixels) at 160 x 120
 // (~0.1 px), which samples these scenes; the automatic one (kAutoFallbackPx) samples only far
 // smaller triangles.
-HybridParams sampling() {
+// The local z-buffering frame's stages, whatever the probe would choose (--frame-way local).
+HybridParams local() {
   HybridParams p;
+  p.frameWay = hybrid::FrameWay::kLocal;
+  return p;
+}
+
+HybridParams sampling() {
+  HybridParams p = local();
   p.fallbackPx = 1.0 / std::log(160.0 * 120.0);
   return p;
 }
@@ -66,7 +73,7 @@ TEST(HybridRenderer, IsExactOnTheCity) {
 // counts are each frame's own (they once accumulated over the frames of a run).
 TEST(HybridRenderer, WithNothingSampledCastsLikeLzbEveryFrame) {
   const Scene scene = loadScene("builtin:city?blocks=4", true);
-  HybridRenderer hybrid(scene, test::renderOptions("lzb", 2), HybridParams{});
+  HybridRenderer hybrid(scene, test::renderOptions("lzb", 2), local());
   localz::LzbRenderer lzb(scene, test::renderOptions("lzb", 2), localz::LzbOptions{});
   for (int f : {0, 1}) {  // (at this size frame 2 samples distant blocks)
     const Camera cam = test::pathFrame(scene, f, 4, 192, 144);
@@ -146,7 +153,7 @@ TEST(HybridRenderer, PlacementTestNeverHidesASampledLeaf) {
 TEST(HybridRenderer, AutomaticThresholdDrawsTheFieldExactly) {
   const Scene* scene = field();
   if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
-  HybridRenderer hybrid(*scene, test::renderOptions("lzb", 2), HybridParams{});
+  HybridRenderer hybrid(*scene, test::renderOptions("lzb", 2), local());
   const Camera cam = test::pathFrame(*scene, 1, 4, 160, 120);
   FrameStats stats;
   const Accuracy a = test::accuracy(*scene, cam, test::renderFrame(hybrid, cam, &stats),
@@ -196,9 +203,9 @@ TEST(HybridRenderer, DenseFarSceneIsCastDirectlyAndExactly) {
   const Scene* scene = field();
   if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
   const Camera cam = test::pathFrame(*scene, 1, 4, 160, 120);
-  HybridParams lazy;
+  HybridParams lazy = local();
   lazy.farPass = hybrid::FarPass::kLazy;
-  for (const HybridParams& params : {HybridParams{}, lazy}) {
+  for (const HybridParams& params : {local(), lazy}) {
     const bool direct = params.farPass == hybrid::FarPass::kAuto;
     HybridRenderer hybrid(*scene, test::renderOptions("lzb", 2), params);
     FrameStats stats;
@@ -216,7 +223,7 @@ TEST(HybridRenderer, DenseFarSceneIsCastDirectlyAndExactly) {
               0.999)
         << direct;
   }
-  expectRankSharesComposite(*scene, cam, HybridParams{}, {"rays_cast"});
+  expectRankSharesComposite(*scene, cam, local(), {"rays_cast"});
 }
 
 // The direct frame's cull stops at the median coarse hit depth (the field holds far more than
@@ -226,7 +233,7 @@ TEST(HybridRenderer, DirectFrameCullsOnlyToTheMedianHitAndDrawsTheWholeCullsImag
   const Scene* scene = field();
   if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
   const Camera cam = test::pathFrame(*scene, 1, 4, 160, 120);
-  HybridRenderer hybrid(*scene, test::renderOptions("lzb", 2), HybridParams{});
+  HybridRenderer hybrid(*scene, test::renderOptions("lzb", 2), local());
   localz::LzbOptions naive;
   naive.stage = localz::LzbStage::kNaive;
   localz::LzbRenderer lzb(*scene, test::renderOptions("lzb", 2), naive);
@@ -241,7 +248,7 @@ TEST(HybridRenderer, DirectFrameCullsOnlyToTheMedianHitAndDrawsTheWholeCullsImag
   EXPECT_EQ(image.id, whole.id);
   EXPECT_EQ(image.depth, whole.depth);
   // Lazy frames cull the whole frustum.
-  HybridParams lazy;
+  HybridParams lazy = local();
   lazy.farPass = hybrid::FarPass::kLazy;
   HybridRenderer lazyHybrid(*scene, test::renderOptions("lzb", 2), lazy);
   FrameStats zs;
@@ -285,7 +292,58 @@ TEST(HybridRenderer, InstancedBoardIsSampledAsWholeSubtrees) {
   }
 }
 
+// The frame's way: on the field (hundreds of triangles a pixel) the probe finds more triangles
+// in front of its plane than pixels they would finish and casts every pixel, the raycast
+// method's image byte for byte with no cull; from the city's street the near walls finish
+// pixels with few triangles and the frame is local z-buffering's. Cast every pixel (rays), the
+// ranks' tiles composite to the 1-rank image.
+TEST(HybridRenderer, ProbeCastsEveryPixelWhereNearTrianglesOutnumberThePixelsTheyFinish) {
+  const Scene* scene = field();
+  if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
+  const Camera cam = test::pathFrame(*scene, 1, 4, 160, 120);
+  HybridRenderer hybrid(*scene, test::renderOptions("lzb", 2), HybridParams{});
+  RaycastRenderer raycast(*scene, test::renderOptions("raycast", 2));
+  FrameStats hs;
+  const Framebuffer image = test::renderFrame(hybrid, cam, &hs);
+  const Framebuffer exact = test::renderFrame(raycast, cam);
+  EXPECT_EQ(hs.shared.value("every_pixel_cast", -1.0), 1.0);
+  EXPECT_GE(hs.shared.value("probe_triangles", 0.0), hs.shared.value("probe_finished_pixels", 1.0));
+  EXPECT_GT(hs.shared.value("probe_finished_pixels", 0.0), 0.0);
+  for (const auto& [stage, seconds] : hs.stageSeconds) EXPECT_NE(stage, "cull");
+  EXPECT_EQ(image.id, exact.id);
+  EXPECT_EQ(image.depth, exact.depth);
+
+  const Scene city = loadScene("builtin:city?blocks=4", true);
+  const Camera street = test::pathFrame(city, 0, 4, 192, 144);
+  HybridRenderer auto_(city, test::renderOptions("lzb", 2), HybridParams{});
+  FrameStats cs;
+  test::renderFrame(auto_, street, &cs);
+  EXPECT_EQ(cs.shared.value("every_pixel_cast", -1.0), 0.0);
+  EXPECT_LT(cs.shared.value("probe_triangles", 1e9), cs.shared.value("probe_finished_pixels", 0.0));
+
+  HybridParams rays;
+  rays.frameWay = hybrid::FrameWay::kRays;
+  HybridRenderer cast(city, test::renderOptions("lzb", 1), rays);
+  RaycastRenderer cityRays(city, test::renderOptions("raycast", 1));
+  const Framebuffer whole = test::renderFrame(cityRays, street);
+  EXPECT_EQ(test::renderFrame(cast, street).id, whole.id);
+  for (int size : {2, 3}) {
+    Framebuffer composite(street.width(), street.height());
+    for (int rank = 0; rank < size; ++rank)
+      compositeNearer(composite, test::renderFrame(cast, street, nullptr, {rank, size}));
+    EXPECT_EQ(composite.id, whole.id) << size << " ranks";
+    EXPECT_EQ(composite.depth, whole.depth) << size << " ranks";
+  }
+}
+
 TEST(HybridRenderer, BadParametersNameTheOption) {
+  EXPECT_EQ(hybrid::parseFrameWay("rays", "--frame-way"), hybrid::FrameWay::kRays);
+  try {
+    hybrid::parseFrameWay("pixels", "--frame-way");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--frame-way"), std::string::npos);
+  }
   HybridParams p;
   p.splat = 0;
   EXPECT_THROW(p.validate(), InputError);
