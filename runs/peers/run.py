@@ -43,6 +43,7 @@ SCENES = {
     "field": (f"builtin:replicated?mesh={ARMADILLO}&k=40&levels=1", 640, 480, 10, 3),
     "sphereflake": ("builtin:sphereflake?depth=5", 512, 512, 20, 20),
     "armadillo": (ARMADILLO, 640, 480, 20, 20),
+    "landscape": ("builtin:landscape?objects=400000", 640, 480, 10, 2),
 }
 METHODS = [("raycast", []), ("hybrid", []), ("lzb", []), ("rzb", []),
            ("rzb_d2", ["--splat", "2"]), ("zbuffer", [])]
@@ -129,6 +130,8 @@ def run():
                 row["rays_per_s"] = counts("rays") / stages("trace")
             if method == "zbuffer" and stages("draw") > 0:
                 row["triangles_per_s"] = counts("triangles_drawn") / (stages("draw") + stages("readback"))
+            if method == "hybrid":  # the frames whose probe cast every pixel (--frame-way)
+                row["every_pixel_frames"] = sum(f["counts"].get("every_pixel_cast", 0.0) for f in fr) / len(fr)
             if method in ("rzb", "hybrid"):
                 splat = stages("splat") or stages("points")
                 if splat > 0:
@@ -155,7 +158,8 @@ def ordered(rows):
 def save(rows, measured, commands):
     fields = ["scene", "triangles", "width", "height", "method", "frames", "median_frame_s",
               "reference", "correct_rate_covered", "median_correct_rate_covered", "psnr_aa",
-              "rays_per_s", "triangles_per_s", "samples_per_s", "setup_s", "peak_memory_bytes"]
+              "rays_per_s", "triangles_per_s", "samples_per_s", "every_pixel_frames", "setup_s",
+              "peak_memory_bytes"]
     common.write_csv(os.path.join(HERE, "peers.csv"), rows, fields, commands)
     common.write_csv(os.path.join(HERE, "limits.csv"), measured,
                      ["when", "threads", "width", "height", "memcpy_bytes_per_s",
