@@ -11,8 +11,9 @@ by 4 ranks in data mode each under the same limit, the image byte-identical to t
 Last, the composite's share of a 1920x1080 raycast frame (landscape of 1.0 M triangles, 6
 frames) on 2 and 4 ranks, replicated and in data mode.
 
-And the hybrid's stages on 2 ranks x 1 thread, replicated, in data mode, and in data mode with a
-static plane (--plane 0.2): where the data-mode frame goes.
+And the hybrid's stages on 2 ranks x 1 thread, replicated, in data mode, and in data mode drawn
+by local z-buffering every frame (--frame-way local), alone and with a static plane (--plane 0.2):
+where the data-mode frame goes.
 
 Usage: python3 runs/distribute/run.py [--quick] [--composite | --stages]   (from the repository
        root, after scripts/build.sh; --composite, --stages: that part alone)
@@ -157,9 +158,12 @@ def composite_study():
                      ["ranks", "mode", "frame_ms", "composite_ms", "composite_share"], commands)
 
 
-# The hybrid on 2 ranks x 1 thread: replicated, data (each region its own partition plane), and
-# data with a static plane (every region's plane at the same depth).
-STAGE_CONFIGS = [("replicate", []), ("data", []), ("data, --plane 0.2", ["--plane", "0.2"])]
+# The hybrid on 2 ranks x 1 thread: replicated, data (each region its own probe), and, drawn by
+# local z-buffering every frame, data (each region its own partition plane) and data with a
+# static plane (every region's plane at the same depth).
+LOCAL = ["--frame-way", "local"]
+STAGE_CONFIGS = [("replicate", []), ("data", []), ("data, --frame-way local", LOCAL),
+                 ("data, --frame-way local --plane 0.2", [*LOCAL, "--plane", "0.2"])]
 
 
 def stages_study():
@@ -172,7 +176,7 @@ def stages_study():
         commands.append(shown)
         frames = rep["frames"][1:]
         row = {"config": name, "frame_ms": round(1000 * common.median(f["seconds"] for f in frames), 1)}
-        for count in ("near_triangles_drawn", "rays_cast", "pvl_size"):
+        for count in ("near_triangles_drawn", "rays_cast", "pvl_size", "every_pixel_cast"):
             row[count] = common.median(f["counts"].get(count, 0) for f in frames)
         for stage in {k for f in frames for k in f["stages"]}:
             row[stage + "_ms"] = round(1000 * common.median(f["stages"].get(stage, 0.0)
@@ -182,7 +186,7 @@ def stages_study():
         print(row, flush=True)
     common.write_csv(os.path.join(HERE, "stages.csv"), rows,
                      ["config", "frame_ms", "near_triangles_drawn", "rays_cast", "pvl_size",
-                      *sorted(stages)], commands)
+                      "every_pixel_cast", *sorted(stages)], commands)
 
 
 def main():

@@ -173,10 +173,14 @@ bool HybridRenderer::castEveryPixelPays(localz::LzbRenderer::Frame& f, FrameStat
   const double pixelsPerRay =
       double(camera.width()) * double(camera.height()) / double(coarse.mean.coarseRays);
   const double finished = double(k + 1) * pixelsPerRay;  // pixels its near pass would finish
+  const double nearCost = double(scene_.expandedTriangles()) >= denseTriangles(camera)
+                              ? HybridParams::kDenseNearTriangleCost
+                              : 1.0;
   stats.setShared("probe_depth", depth);
   stats.setShared("probe_finished_pixels", finished);
-  // Fewer triangles than that in the whole scene: the probe's plane pays, whatever it culls.
-  if (double(scene_.expandedTriangles()) < finished) return false;
+  stats.setShared("probe_near_triangle_cost", nearCost);
+  // The whole scene costs less than that: the probe's plane pays, whatever it culls.
+  if (nearCost * double(scene_.expandedTriangles()) < finished) return false;
   lzb_.cull(f, depth);
   uint64_t triangles = 0;
   for (const localz::CullPath& p : lzb_.culled().paths) {
@@ -189,11 +193,10 @@ bool HybridRenderer::castEveryPixelPays(localz::LzbRenderer::Frame& f, FrameStat
     triangles += p.leafTriangles;
   }
   stats.setShared("probe_triangles", double(triangles));
-  // The cost plane's comparison (lzb_plane.hpp) of the probe's plane with casting every pixel,
-  // a near triangle costing as much as a direct ray: triangles shrink on screen with depth, so
-  // the nearest covered pixels are the cheapest a near pass finishes, and no plane beyond pays
-  // when this one does not.
-  return double(triangles) >= finished;
+  // The cost plane's comparison (lzb_plane.hpp) of the probe's plane with casting every pixel:
+  // triangles shrink on screen with depth, so the nearest covered pixels are the cheapest a near
+  // pass finishes, and no plane beyond pays when this one does not.
+  return nearCost * double(triangles) >= finished;
 }
 
 double HybridRenderer::cullForFarPass(localz::LzbRenderer::Frame& f, double* triangles) {
