@@ -58,11 +58,8 @@ struct HybridParams {
   // 200 x 200, 43: 3.3 vs 2.7; forest 1080p, 33: 122 vs 88; forest 640 x 480, 182: 39 vs 31).
   static constexpr double kDirectTrianglesPerPixel = 16.0;
   FrameWay frameWay = FrameWay::kAuto;
-  // The probe's depth: the coarse hit nearer than all but this share of the hits. A plane in
-  // front of it finishes at most this share of the covered pixels, so when the leaves in front
-  // of it hold as many triangles as the covered pixels, casting every pixel costs at most this
-  // share of the image more than the best plane (the cost plane's units: a near triangle as
-  // much as a direct ray).
+  // The probe's plane: the coarse hit with this share of the hits in front of it, near enough
+  // for its cull to be cheap beside a frame's, far enough to finish some pixels.
   static constexpr double kProbeQuantile = 1.0 / 16.0;
   // The probe's cost of a near triangle in direct rays where the scene holds at least
   // kDirectTrianglesPerPixel (its far pass may be direct): its leaf's cull, the plane's binning
