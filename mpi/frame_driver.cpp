@@ -70,11 +70,20 @@ nlohmann::json FrameDriver::render(Renderer& renderer, const Camera& camera, int
   fb.resize(camera.width(), camera.height());
   stats.addStage("clear", clock.seconds());
   WorkShare share{g.rank, g.size};
-  if (g.size > 1)
+  if (g.size > 1) {
     share.orWords = [&g](std::span<uint64_t> words) {
       LZB_MPI_CALL(MPI_Allreduce(MPI_IN_PLACE, words.data(), int(words.size()), MPI_UINT64_T,
                                  MPI_BOR, g.comm));
     };
+    share.minDoubles = [&g](std::span<double> values) {
+      LZB_MPI_CALL(MPI_Allreduce(MPI_IN_PLACE, values.data(), int(values.size()), MPI_DOUBLE,
+                                 MPI_MIN, g.comm));
+    };
+    share.sumWords = [&g](std::span<uint64_t> words) {
+      LZB_MPI_CALL(MPI_Allreduce(MPI_IN_PLACE, words.data(), int(words.size()), MPI_UINT64_T,
+                                 MPI_SUM, g.comm));
+    };
+  }
   renderer.render(camera, frame, share, fb, stats);
   if (g.size > 1) {  // idle until the slowest rank is done, so "composite" is the exchange alone
     Stopwatch idle;

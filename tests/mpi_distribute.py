@@ -10,7 +10,8 @@ on 2 and 3 ranks must equal the 1-rank data-mode run's with the same regions. Ev
 prove the scene was split: the ranks' held triangles sum to the scene's, each region held once, a
 rank with a share draws only from it (the zbuffer's triangles drawn per rank sum to the
 replicated count) and, with 7 regions, every rank holds some. With 2 frame groups of 3 ranks,
-each group holds the whole scene.
+each group holds the whole scene. The hybrid's probe (whether to cast every pixel) must give the
+same choice and counts on every rank count.
 The landscape and two binary PLY files (the city exported, and a terrain far from the origin that
 the loader stores recentred) are streamed, each rank keeping only its triangles; the bunny (OFF)
 is loaded whole and cut.
@@ -149,6 +150,13 @@ def check_run(lzb, work, name, replicated):
         covered = sum(f["covered_pixels"] for f in rep["frames"])
         expected = sum(f["covered_pixels"] for f in exact["frames"])
         assert abs(covered - expected) <= 0.1 * expected, ("covered", covered, expected)
+    if name.startswith("hybrid"):
+        # The frame's way is chosen over every region of every rank: the same choice and the
+        # same summed counts whichever rank holds which region.
+        for a, b in zip(one["frames"], rep["frames"]):
+            for k in ("every_pixel_cast", "probe_triangles", "probe_depth"):
+                assert a["counts"].get(k) == b["counts"].get(k), (k, a["counts"].get(k),
+                                                                 b["counts"].get(k))
     if name.endswith("_3_7_1") and prefix_of(name).split("_")[0] in ("zbuffer", "hybrid"):
         # lzb info estimates from the same cut: its shares are those the ranks held.
         info = json.loads(subprocess.run(

@@ -7,9 +7,8 @@
 
 namespace lzb::localz {
 
-PlaneDecision PartitionPlane::coarseRayCast(const EmbreeScene& embree, const Camera& camera,
-                                            int grid, std::vector<double>* hitDepths,
-                                            int threads) {
+std::vector<double> PartitionPlane::coarseRayDepths(const EmbreeScene& embree, const Camera& camera,
+                                                    int grid, int threads) {
   const int gx = std::clamp(grid, 1, camera.width()), gy = std::clamp(grid, 1, camera.height());
   std::vector<Ray> rays;
   rays.reserve(size_t(gx) * size_t(gy));
@@ -29,18 +28,32 @@ PlaneDecision PartitionPlane::coarseRayCast(const EmbreeScene& embree, const Cam
     embree.intersect(std::span<const Ray>(rays).subspan(first, count),
                      std::span<RayHit>(hits).subspan(first, count));
   }
-  PlaneDecision d;
-  d.coarseRays = rays.size();
+  std::vector<double> depths(hits.size());
+  for (size_t k = 0; k < hits.size(); ++k)  // t is the view depth (forward component 1)
+    depths[k] = hits[k].hit() ? double(hits[k].t) : std::numeric_limits<double>::infinity();
+  return depths;
+}
+
+CoarseHits PartitionPlane::coarseHitsOf(std::span<const double> perRay, const Camera& camera) {
+  CoarseHits c;
+  c.mean.coarseRays = perRay.size();
   double sum = 0.0;
-  for (const RayHit& h : hits)
-    if (h.hit()) {
-      sum += double(h.t);  // t is the view depth (pixelDirection's forward component is 1)
-      ++d.coarseHits;
-      if (hitDepths) hitDepths->push_back(double(h.t));
+  for (double t : perRay)
+    if (std::isfinite(t)) {
+      sum += t;
+      ++c.mean.coarseHits;
+      c.depths.push_back(t);
     }
-  d.depth = d.coarseHits ? sum / double(d.coarseHits) : camera.farPlane();
-  d.depth = std::clamp(d.depth, camera.nearPlane(), camera.farPlane());
-  return d;
+  c.mean.depth = c.mean.coarseHits ? sum / double(c.mean.coarseHits) : camera.farPlane();
+  c.mean.depth = std::clamp(c.mean.depth, camera.nearPlane(), camera.farPlane());
+  return c;
+}
+
+PlaneDecision PartitionPlane::coarseRayCast(const EmbreeScene& embree, const Camera& camera,
+                                            int grid, std::vector<double>* hitDepths, int threads) {
+  CoarseHits c = coarseHitsOf(coarseRayDepths(embree, camera, grid, threads), camera);
+  if (hitDepths) hitDepths->insert(hitDepths->end(), c.depths.begin(), c.depths.end());
+  return c.mean;
 }
 
 namespace {

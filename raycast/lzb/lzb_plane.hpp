@@ -81,6 +81,11 @@ class PartitionPlane {
   // After the near pass: how many pixels it left unfinished (feeds reuse rule 5).
   void observe(uint64_t unfinished);
 
+  // The coarse grid's nearest hit depth per ray, row by row (infinity: no hit).
+  static std::vector<double> coarseRayDepths(const EmbreeScene& embree, const Camera& camera,
+                                             int grid, int threads = 1);
+  // The mean decision and the hit depths (in ray order) of the rays' depths.
+  static CoarseHits coarseHitsOf(std::span<const double> perRay, const Camera& camera);
   // Mean nearest-hit depth over the coarse grid (0 hits: camera far); exposed for tests. The
   // hit depths go to *hits when given.
   static PlaneDecision coarseRayCast(const EmbreeScene& embree, const Camera& camera, int grid,

@@ -1,10 +1,13 @@
 #include "src/cli/distribute.hpp"
 
 #include <algorithm>
+#include <array>
+#include <limits>
 
 #include "mpi/decomposition.hpp"
 #include "src/cli/methods.hpp"
 #include "src/core/error.hpp"
+#include "src/core/frame_probe.hpp"
 #include "src/core/shading.hpp"
 #include "src/core/timer.hpp"
 
@@ -128,8 +131,9 @@ class PartRenderer : public Renderer {
   }
 
   // Every rank renders its whole parts: the regions are the share.
-  void render(const Camera& camera, int frame, const WorkShare&, Framebuffer& fb,
+  void render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
               FrameStats& stats) override {
+    probeTogether(camera, share, stats);
     bool first = true;
     for (size_t p = 0; p < inner_.size(); ++p) {
       if (!inner_[p]) continue;  // an empty part
@@ -176,6 +180,40 @@ class PartRenderer : public Renderer {
   }
 
  private:
+  // A probing method's step 0 over every part of every rank (src/core/frame_probe.hpp). Every
+  // rank takes part in the reductions, one holding no part too.
+  void probeTogether(const Camera& camera, const WorkShare& share, FrameStats& stats) {
+    std::vector<FrameProbe*> probes;
+    size_t rays = 0;
+    for (const auto& r : inner_)
+      if (auto* p = dynamic_cast<FrameProbe*>(r.get()); p && p->probeRays(camera) > 0) {
+        probes.push_back(p);
+        rays = p->probeRays(camera);
+      }
+    double most = -double(rays);  // the ray count, known on every rank
+    if (share.minDoubles) share.minDoubles({&most, 1});
+    if (most == 0.0) return;
+    Stopwatch clock;
+    std::vector<double> depths(size_t(-most), std::numeric_limits<double>::infinity());
+    for (FrameProbe* p : probes) {
+      const std::vector<double> own = p->coarseRayDepths(camera);
+      for (size_t k = 0; k < depths.size(); ++k) depths[k] = std::min(depths[k], own[k]);
+    }
+    if (share.minDoubles) share.minDoubles(depths);
+    std::array<uint64_t, 3> sums{};
+    for (FrameProbe* p : probes) {
+      const ProbeCounts c = p->probe(camera, depths);
+      sums[0] += c.triangles, sums[1] += c.sampledUnits, sums[2] += c.sceneTriangles;
+    }
+    if (share.sumWords) share.sumWords(sums);
+    if (!probes.empty()) {
+      const bool everyPixel = probes.front()->everyPixelPays(
+          camera, depths, ProbeCounts{sums[0], sums[1], sums[2]}, stats);
+      for (FrameProbe* p : probes) p->setFrameWay(everyPixel);
+      stats.setShared("every_pixel_cast", everyPixel ? 1.0 : 0.0);
+    }
+    stats.addStage("probe", clock.seconds());
+  }
   // The part's IDs name its own triangles: shade first, then renumber.
   static void toWholeScene(const Renderer& inner, const ScenePart& part, const Camera& camera,
                            Framebuffer& fb) {

@@ -10,7 +10,8 @@
 // one part and the image is the replicated run's. Every other method samples, culls or chooses
 // from what it holds, so each region is a part of its own with its own renderer, composited by
 // depth on the rank: a region's image then depends on the region alone, and the same --regions
-// give the same image on any number of ranks.
+// give the same image on any number of ranks. The one decision the regions share is the
+// hybrid's frame way (src/core/frame_probe.hpp), reduced over every region of every rank.
 #include <cstdint>
 #include <memory>
 #include <span>

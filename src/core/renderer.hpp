@@ -26,6 +26,9 @@ struct WorkShare {
   // ranks in place (every rank calls it at the same step). Unset (shares rendered one after
   // another in one process, and one rank): a method replicates the step that would need it.
   std::function<void(std::span<uint64_t>)> orWords = {};
+  // Set alike: the minimum of `values` and the sum of `words` over the ranks, in place.
+  std::function<void(std::span<double>)> minDoubles = {};
+  std::function<void(std::span<uint64_t>)> sumWords = {};
 };
 
 struct RenderOptions {

@@ -105,9 +105,8 @@ FrameStats HybridRenderer::setupStats() const {
   return s;
 }
 
-void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& share,
-                            Framebuffer& fb, FrameStats& stats) {
-  requireFrameSize(fb, camera, "hybrid");
+localz::LzbRenderer::Frame HybridRenderer::beginFrame(const Camera& camera,
+                                                      const WorkShare& share) {
   localz::LzbRenderer::Frame f;
   f.camera = &camera;
   f.share = share;
@@ -115,11 +114,25 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
   rule_ = std::make_unique<SampledLeafRule>(lzb_.accel(), areas_, camera.pixelsPerUnitAt(1.0),
                                             pp.thresholdPx);
   f.leafFilter = rule_.get();  // the cull leaves wholly sampled nodes out
+  return f;
+}
+
+void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& share,
+                            Framebuffer& fb, FrameStats& stats) {
+  requireFrameSize(fb, camera, "hybrid");
+  localz::LzbRenderer::Frame f = beginFrame(camera, share);
+  const PointParams pp = params_.pointParams(camera.width(), camera.height());
   Stopwatch clock;
-  const bool everyPixel = params_.frameWay == FrameWay::kRays ||
-                          (params_.frameWay == FrameWay::kAuto && castEveryPixelPays(f, stats));
+  bool everyPixel = params_.frameWay == FrameWay::kRays;
+  if (decided_) {  // the parts' probe chose (phase 3); the plane gets this part's coarse rays
+    everyPixel = *decided_;
+    decided_.reset();
+    f.coarse = localz::PartitionPlane::coarseHitsOf(coarseDepths_, camera);
+  } else if (params_.frameWay == FrameWay::kAuto) {
+    everyPixel = castEveryPixelPays(f, stats);
+    stats.addStage("probe", clock.lap());
+  }
   stats.setShared("every_pixel_cast", everyPixel ? 1.0 : 0.0);
-  if (params_.frameWay == FrameWay::kAuto) stats.addStage("probe", clock.lap());
   if (everyPixel) {
     stats.addCount("rays_cast",
                    double(castEveryPixel(lzb_.embree(), camera, share, fb, options_.threads)));
@@ -161,42 +174,85 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
   if (cullDepth < camera.farPlane()) stats.setShared("cull_depth", cullDepth);
 }
 
-bool HybridRenderer::castEveryPixelPays(localz::LzbRenderer::Frame& f, FrameStats& stats) {
-  const Camera& camera = *f.camera;
-  const localz::CoarseHits& coarse = lzb_.castCoarseRays(f);
-  if (coarse.depths.empty()) return true;  // nothing met: no near pass would finish a pixel
-  // The probe's plane: the coarse hit with kProbeQuantile of the hits in front of it.
-  std::vector<double> hits = coarse.depths;
+size_t HybridRenderer::probeRays(const Camera& camera) const {
+  if (params_.frameWay != FrameWay::kAuto) return 0;
+  const int grid = lzb_.options().planeGrid;
+  return size_t(std::clamp(grid, 1, camera.width())) * size_t(std::clamp(grid, 1, camera.height()));
+}
+
+std::vector<double> HybridRenderer::coarseRayDepths(const Camera& camera) {
+  coarseDepths_ = localz::PartitionPlane::coarseRayDepths(
+      lzb_.embree(), camera, lzb_.options().planeGrid, options_.threads);
+  return coarseDepths_;
+}
+
+ProbeCounts HybridRenderer::probe(const Camera& camera, std::span<const double> frameDepths) {
+  localz::LzbRenderer::Frame f = beginFrame(camera, WorkShare{});
+  return probeCounts(f, frameDepths);
+}
+
+namespace {
+
+// The probe's plane: the coarse hit with kProbeQuantile of the hits in front of it, and the
+// pixels a near pass up to it would finish. None without a hit.
+struct ProbePlane {
+  double depth = 0.0, finished = 0.0;
+};
+
+std::optional<ProbePlane> probePlane(const Camera& camera, std::span<const double> perRay) {
+  std::vector<double> hits;
+  for (double t : perRay)
+    if (std::isfinite(t)) hits.push_back(t);
+  if (hits.empty()) return std::nullopt;
   const size_t k = size_t(double(hits.size() - 1) * HybridParams::kProbeQuantile);
   std::nth_element(hits.begin(), hits.begin() + std::ptrdiff_t(k), hits.end());
-  const double depth = hits[k];
   const double pixelsPerRay =
-      double(camera.width()) * double(camera.height()) / double(coarse.mean.coarseRays);
-  const double finished = double(k + 1) * pixelsPerRay;  // pixels its near pass would finish
-  const double nearCost = double(scene_.expandedTriangles()) >= denseTriangles(camera)
+      double(camera.width()) * double(camera.height()) / double(perRay.size());
+  return ProbePlane{hits[k], double(k + 1) * pixelsPerRay};
+}
+
+}  // namespace
+
+ProbeCounts HybridRenderer::probeCounts(localz::LzbRenderer::Frame& f,
+                                        std::span<const double> frameDepths) {
+  ProbeCounts c;
+  c.sceneTriangles = scene_.expandedTriangles();
+  const std::optional<ProbePlane> plane = probePlane(*f.camera, frameDepths);
+  if (!plane) return c;
+  lzb_.cull(f, plane->depth);
+  for (const localz::CullPath& p : lzb_.culled().paths) {
+    if (p.drawnElsewhere || p.subtree) ++c.sampledUnits;
+    c.triangles += p.leafTriangles;
+  }
+  return c;
+}
+
+bool HybridRenderer::everyPixelPays(const Camera& camera, std::span<const double> frameDepths,
+                                    const ProbeCounts& frame, FrameStats& stats) const {
+  const std::optional<ProbePlane> plane = probePlane(camera, frameDepths);
+  if (!plane) return true;  // nothing met: no near pass would finish a pixel
+  const double nearCost = double(frame.sceneTriangles) >= denseTriangles(camera)
                               ? HybridParams::kDenseNearTriangleCost
                               : 1.0;
-  stats.setShared("probe_depth", depth);
-  stats.setShared("probe_finished_pixels", finished);
+  stats.setShared("probe_depth", plane->depth);
+  stats.setShared("probe_finished_pixels", plane->finished);
   stats.setShared("probe_near_triangle_cost", nearCost);
-  // The whole scene costs less than that: the probe's plane pays, whatever it culls.
-  if (nearCost * double(scene_.expandedTriangles()) < finished) return false;
-  lzb_.cull(f, depth);
-  uint64_t triangles = 0;
-  for (const localz::CullPath& p : lzb_.culled().paths) {
-    // A unit the point pass takes whole sends the far rays through the octree walk, which loses
-    // to Embree's (the chessboard: 540 against 112 ms a frame, runs/peers).
-    if (p.drawnElsewhere || p.subtree) {
-      stats.setShared("probe_sampled_unit", 1.0);
-      return true;
-    }
-    triangles += p.leafTriangles;
-  }
-  stats.setShared("probe_triangles", double(triangles));
+  stats.setShared("probe_triangles", double(frame.triangles));
+  stats.setShared("probe_sampled_units", double(frame.sampledUnits));
+  // A unit the point pass takes whole sends the far rays through the octree walk, which loses
+  // to Embree's (the chessboard: 540 against 112 ms a frame, runs/peers).
+  if (frame.sampledUnits > 0) return true;
   // The cost plane's comparison (lzb_plane.hpp) of the probe's plane with casting every pixel:
   // triangles shrink on screen with depth, so the nearest covered pixels are the cheapest a near
   // pass finishes, and no plane beyond pays when this one does not.
-  return nearCost * double(triangles) >= finished;
+  return nearCost * double(frame.triangles) >= plane->finished;
+}
+
+bool HybridRenderer::castEveryPixelPays(localz::LzbRenderer::Frame& f, FrameStats& stats) {
+  const Camera& camera = *f.camera;
+  coarseRayDepths(camera);
+  f.coarse = localz::PartitionPlane::coarseHitsOf(coarseDepths_, camera);
+  return everyPixelPays(camera, coarseDepths_, probeCounts(f, coarseDepths_), stats);
 }
 
 double HybridRenderer::cullForFarPass(localz::LzbRenderer::Frame& f, double* triangles) {

@@ -15,11 +15,14 @@
 // the samples (a ray stopped at its rank's nearest sample would look deeper on a rank holding
 // fewer samples), so the ranks' composite is the 1-rank image.
 #include <memory>
+#include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "raycast/lzb/lzb_renderer.hpp"
 #include "src/core/depth_key.hpp"
+#include "src/core/frame_probe.hpp"
 #include "src/core/renderer.hpp"
 #include "src/hybrid/leaf_areas.hpp"
 #include "src/hybrid/leaf_points.hpp"
@@ -78,7 +81,7 @@ struct HybridParams {
   nlohmann::json toJson() const;
 };
 
-class HybridRenderer : public Renderer {
+class HybridRenderer : public Renderer, public FrameProbe {
  public:
   HybridRenderer(const Scene& scene, const RenderOptions& options, const HybridParams& params);
 
@@ -88,13 +91,24 @@ class HybridRenderer : public Renderer {
               FrameStats& stats) override;
   FrameStats setupStats() const override;
 
+  // Step 0 over the parts of a data-parallel scene (frame_probe.hpp).
+  size_t probeRays(const Camera& camera) const override;
+  std::vector<double> coarseRayDepths(const Camera& camera) override;
+  ProbeCounts probe(const Camera& camera, std::span<const double> frameDepths) override;
+  bool everyPixelPays(const Camera& camera, std::span<const double> frameDepths,
+                      const ProbeCounts& frame, FrameStats& stats) const override;
+  void setFrameWay(bool everyPixel) override { decided_ = everyPixel; }
+
   const localz::LzbRenderer& lzb() const { return lzb_; }
 
  private:
-  // Step 0 (--frame-way auto): whether casting every pixel costs no more than the best local
-  // z-buffering frame. Casts the coarse rays (kept for the plane) and culls up to the probe's
-  // depth (kProbeQuantile); sets the probe's figures in stats.
+  // A frame's state for the stages, with the point pass's rule for this camera.
+  localz::LzbRenderer::Frame beginFrame(const Camera& camera, const WorkShare& share);
+  // Step 0 (--frame-way auto) of a frame alone: casts the coarse rays (kept for the plane),
+  // probes and chooses.
   bool castEveryPixelPays(localz::LzbRenderer::Frame& f, FrameStats& stats);
+  // The counts in front of the probe's plane placed from frameDepths (culls up to it).
+  ProbeCounts probeCounts(localz::LzbRenderer::Frame& f, std::span<const double> frameDepths);
   // Step 2: the sampled leaves of this frame, this rank's share splatted into points_.
   void drawPoints(localz::LzbRenderer::Frame& f, const PointParams& pp, int frame,
                   FrameStats& stats);
@@ -125,6 +139,8 @@ class HybridRenderer : public Renderer {
   Framebuffer points_;  // this rank's samples (depth and ID)
   bool pointsDrawn_ = false;  // this frame had samples for this rank (else points_ is stale)
   std::unique_ptr<SampledLeafRule> rule_;
+  std::vector<double> coarseDepths_;  // this frame's coarse rays, per ray (phase 1 or step 0)
+  std::optional<bool> decided_;       // the way set by setFrameWay for the next frame
 };
 
 }  // namespace lzb::hybrid
