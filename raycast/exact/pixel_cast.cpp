@@ -71,15 +71,33 @@ bool overlap(const TileRect& a, const TileRect& b) {
 
 }  // namespace
 
+namespace {
+
+// share's tiles under the projection of what embree holds.
+std::vector<int> tilesToCast(const EmbreeScene& embree, const Camera& camera,
+                             const WorkShare& share, const ScreenTiles& tiles) {
+  const TileRect under = pixelsUnder(embree.heldBounds(), camera, camera.width(), camera.height());
+  std::vector<int> mine;
+  for (int t : tiles.owned(share))
+    if (overlap(tiles.tile(t), under)) mine.push_back(t);
+  return mine;
+}
+
+}  // namespace
+
+uint64_t castablePixels(const EmbreeScene& embree, const Camera& camera) {
+  const ScreenTiles tiles(camera.width(), camera.height());
+  uint64_t pixels = 0;
+  for (int t : tilesToCast(embree, camera, WorkShare{}, tiles)) pixels += tiles.tile(t).pixels();
+  return pixels;
+}
+
 uint64_t castEveryPixel(const EmbreeScene& embree, const Camera& camera, const WorkShare& share,
                         Framebuffer& fb, int threads, bool packets) {
   const ScreenTiles tiles(fb.width, fb.height);
   // Tiles beyond the projection of what the scene holds stay empty without a ray: a scene part
   // (--distribute data) casts only where its regions project.
-  const TileRect under = pixelsUnder(embree.heldBounds(), camera, fb.width, fb.height);
-  std::vector<int> mine;
-  for (int t : tiles.owned(share))
-    if (overlap(tiles.tile(t), under)) mine.push_back(t);
+  const std::vector<int> mine = tilesToCast(embree, camera, share, tiles);
   const long count = long(mine.size());
   long rays = 0;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(threads, 1)) reduction(+ : rays)

@@ -13,6 +13,10 @@
 
 namespace lzb {
 
+// The pixels castEveryPixel casts on one rank: those of the tiles under the projection of what
+// the Embree scene holds.
+uint64_t castablePixels(const EmbreeScene& embree, const Camera& camera);
+
 // Casts the pixels of share's tiles into fb (depth and ID; other pixels untouched) on `threads`
 // threads, as 4 x 4 Embree packets when `packets`; returns the rays cast.
 uint64_t castEveryPixel(const EmbreeScene& embree, const Camera& camera, const WorkShare& share,

@@ -87,13 +87,17 @@ std::vector<uint64_t> nearHistogram(const std::vector<double>& hits, double near
 }  // namespace
 
 double PartitionPlane::costPlane(std::vector<double> hits, uint64_t rays, const Camera& camera,
-                                 std::span<const LeafLoad> loads, double rayCost, int threads) {
+                                 std::span<const LeafLoad> loads, double rayCost, int threads,
+                                 double* cost) {
+  double ignored;
+  if (!cost) cost = &ignored;
   if (hits.empty() || rays == 0) {
     // No coarse ray hit (sparse or sub-pixel geometry slips between them): every pixel may still
     // need a ray, so weigh the whole near scene against a ray for every pixel.
     double triangles = 0.0;
     for (const LeafLoad& l : loads) triangles += l.triangles;
     const double pixels = double(camera.width()) * double(camera.height());
+    *cost = std::min(triangles, rayCost * pixels);
     return triangles <= rayCost * pixels ? camera.farPlane() : camera.nearPlane();
   }
   std::sort(hits.begin(), hits.end());
@@ -112,6 +116,7 @@ double PartitionPlane::costPlane(std::vector<double> hits, uint64_t rays, const 
       z = k == 0 ? camera.nearPlane() : hits[k - 1];
     }
   }
+  *cost = best;
   return std::clamp(z, camera.nearPlane(), camera.farPlane());
 }
 
@@ -153,7 +158,8 @@ PlaneDecision PartitionPlane::place(const EmbreeScene& embree, const Camera& cam
   else d = coarseRayCast(embree, camera, options_.planeGrid, &hits, threads);
   if (options_.costPlane)
     d.depth = costPlane(std::move(hits), d.coarseRays, camera, loads,
-                        directRays || !options_.usesPvl() ? kNaiveRayCost : kRayCost, threads);
+                        directRays || !options_.usesPvl() ? kNaiveRayCost : kRayCost, threads,
+                        &d.cost);
   have_ = true;
   at_ = camera;
   depth_ = d.depth;

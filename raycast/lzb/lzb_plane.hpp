@@ -43,6 +43,7 @@ struct PlaneDecision {
   double depth = 0.0;  // z_clip, view depth in [near, far]
   bool reused = false;
   uint64_t coarseRays = 0, coarseHits = 0;  // this frame's (0 when reused or static)
+  double cost = -1.0;  // the cost plane's estimate of the frame there, in near triangles (-1: none)
 };
 
 // The coarse grid's rays of one camera, cast once before the plane (a composing method that
@@ -92,9 +93,10 @@ class PartitionPlane {
                                      std::vector<double>* hits = nullptr, int threads = 1);
   // The cost plane from the coarse hit depths of `rays` rays and the culled leaves' loads, one
   // ray-cast pixel costing rayCost near triangles; the loads are binned on `threads` threads
-  // (integer counts: the same plane for any thread count).
+  // (integer counts: the same plane for any thread count). *cost: the estimate there.
   static double costPlane(std::vector<double> hits, uint64_t rays, const Camera& camera,
-                          std::span<const LeafLoad> loads, double rayCost, int threads = 1);
+                          std::span<const LeafLoad> loads, double rayCost, int threads = 1,
+                          double* cost = nullptr);
 
  private:
   bool stillValid(const Camera& camera) const;

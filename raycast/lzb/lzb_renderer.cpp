@@ -448,6 +448,7 @@ void LzbRenderer::countFrame(const Frame& f, FrameStats& stats) const {
   stats.setShared("plane_fraction",
                   (f.zClip - camera.nearPlane()) / (camera.farPlane() - camera.nearPlane()));
   stats.setShared("plane_reused", last_.plane.reused ? 1.0 : 0.0);
+  if (last_.plane.cost >= 0.0) stats.setShared("plane_cost", last_.plane.cost);
   stats.setShared("coarse_rays", double(last_.plane.coarseRays));
   stats.setShared("culled_leaves", double(culled_.leaves.size()));
   stats.setShared("near_leaves", double(f.nearLists.leaves));

@@ -124,7 +124,8 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
   const PointParams pp = params_.pointParams(camera.width(), camera.height());
   Stopwatch clock;
   bool everyPixel = params_.frameWay == FrameWay::kRays;
-  if (decided_) {  // the parts' probe chose (phase 3); the plane gets this part's coarse rays
+  const bool byParts = decided_.has_value();
+  if (byParts) {  // the parts' probe chose (phase 3); the plane gets this part's coarse rays
     everyPixel = *decided_;
     decided_.reset();
     f.coarse = localz::PartitionPlane::coarseHitsOf(coarseDepths_, camera);
@@ -132,13 +133,7 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
     everyPixel = castEveryPixelPays(f, stats);
     stats.addStage("probe", clock.lap());
   }
-  stats.setShared("every_pixel_cast", everyPixel ? 1.0 : 0.0);
-  if (everyPixel) {
-    stats.addCount("rays_cast",
-                   double(castEveryPixel(lzb_.embree(), camera, share, fb, options_.threads)));
-    stats.addStage("trace", clock.lap());
-    return;
-  }
+  if (everyPixel) return castEveryPixelInstead(camera, share, fb, stats, clock);
   double culledTriangles = -1.0;
   const double cullDepth = cullForFarPass(f, &culledTriangles);
   f.directRays = directRaysPay(camera, culledTriangles);
@@ -147,6 +142,9 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
   f.zClip = std::min(f.zClip, cullDepth);  // a reused plane may lie beyond a partial cull
   rule_->setPlane(f.zClip);
   stats.addStage("plane", clock.lap());
+  if (params_.frameWay == FrameWay::kAuto && !byParts && planeCostsMoreThanCasting(camera, stats))
+    return castEveryPixelInstead(camera, share, fb, stats, clock);
+  stats.setShared("every_pixel_cast", 0.0);
   lzb_.drawNearPass(f, fb);
   stats.addStage("near", clock.lap());
   lzb_.markUnfinished(f, fb);
@@ -246,6 +244,22 @@ bool HybridRenderer::everyPixelPays(const Camera& camera, std::span<const double
   // triangles shrink on screen with depth, so the nearest covered pixels are the cheapest a near
   // pass finishes, and no plane beyond pays when this one does not.
   return nearCost * double(frame.triangles) >= plane->finished;
+}
+
+void HybridRenderer::castEveryPixelInstead(const Camera& camera, const WorkShare& share,
+                                           Framebuffer& fb, FrameStats& stats, Stopwatch& clock) {
+  stats.setShared("every_pixel_cast", 1.0);
+  stats.addCount("rays_cast",
+                 double(castEveryPixel(lzb_.embree(), camera, share, fb, options_.threads)));
+  stats.addStage("trace", clock.lap());
+}
+
+bool HybridRenderer::planeCostsMoreThanCasting(const Camera& camera, FrameStats& stats) const {
+  const double cost = lzb_.lastFrame().plane.cost;
+  if (cost < 0.0) return false;  // a static or reused plane: no estimate
+  const double castable = double(castablePixels(lzb_.embree(), camera));
+  stats.setShared("castable_pixels", castable);
+  return cost > HybridParams::kCastPixelCost * castable;
 }
 
 bool HybridRenderer::castEveryPixelPays(localz::LzbRenderer::Frame& f, FrameStats& stats) {

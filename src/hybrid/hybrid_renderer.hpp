@@ -24,6 +24,7 @@
 #include "src/core/depth_key.hpp"
 #include "src/core/frame_probe.hpp"
 #include "src/core/renderer.hpp"
+#include "src/core/timer.hpp"
 #include "src/hybrid/leaf_areas.hpp"
 #include "src/hybrid/leaf_points.hpp"
 
@@ -71,6 +72,12 @@ struct HybridParams {
   // In a sparser scene 1, the cost plane's unit: there the lazy far pass skips the empty pixels
   // that casting every pixel pays for.
   static constexpr double kDenseNearTriangleCost = 13.0;
+  // After the plane of a frame the probe kept local: a pixel cast as raycast casts it costs this
+  // many of the cost plane's near triangles, and the frame casts every pixel when the plane's
+  // estimate costs more (runs/peers/frame_way.py, every frame both ways: local was faster where
+  // the estimate was below 0.2-0.48 of the castable pixels, and slower from 0.59, on the cities,
+  // the armadillo and the landscape at 10^6).
+  static constexpr double kCastPixelCost = 0.5;
   // The local z-buffering stages (final stage, native z-buffers); its far rays walk the octrees
   // in frames where the point pass takes leaves (only the walk skips them), else are Embree's.
   localz::LzbOptions lzb;
@@ -107,6 +114,12 @@ class HybridRenderer : public Renderer, public FrameProbe {
   // Step 0 (--frame-way auto) of a frame alone: casts the coarse rays (kept for the plane),
   // probes and chooses.
   bool castEveryPixelPays(localz::LzbRenderer::Frame& f, FrameStats& stats);
+  // After the plane (auto, a frame alone): whether the cost plane's estimate exceeds what
+  // casting every pixel costs (kCastPixelCost).
+  bool planeCostsMoreThanCasting(const Camera& camera, FrameStats& stats) const;
+  // Draws the frame as raycast does (the rest of the clock's time is its "trace").
+  void castEveryPixelInstead(const Camera& camera, const WorkShare& share, Framebuffer& fb,
+                             FrameStats& stats, Stopwatch& clock);
   // The counts in front of the probe's plane placed from frameDepths (culls up to it).
   ProbeCounts probeCounts(localz::LzbRenderer::Frame& f, std::span<const double> frameDepths);
   // Step 2: the sampled leaves of this frame, this rank's share splatted into points_.

@@ -295,8 +295,8 @@ TEST(HybridRenderer, InstancedBoardIsSampledAsWholeSubtrees) {
 // The frame's way: on the field (hundreds of triangles a pixel) the probe finds more triangles
 // in front of its plane than pixels they would finish and casts every pixel, the raycast
 // method's image byte for byte with no cull; from the city's street the near walls finish
-// pixels with few triangles and the frame is local z-buffering's. Cast every pixel (rays), the
-// ranks' tiles composite to the 1-rank image.
+// pixels with few triangles and the frame is local z-buffering's, unless the plane's estimate
+// says otherwise. Cast every pixel (rays), the ranks' tiles composite to the 1-rank image.
 TEST(HybridRenderer, ProbeCastsEveryPixelWhereNearTrianglesOutnumberThePixelsTheyFinish) {
   const Scene* scene = field();
   if (!scene) GTEST_SKIP() << "armadillo.off missing: run scripts/fetch-test-meshes.sh";
@@ -313,13 +313,23 @@ TEST(HybridRenderer, ProbeCastsEveryPixelWhereNearTrianglesOutnumberThePixelsThe
   EXPECT_EQ(image.id, exact.id);
   EXPECT_EQ(image.depth, exact.depth);
 
+  // The city's street at 640 x 480: the probe and the plane's estimate keep it local. At
+  // 192 x 144 the probe keeps it local, but the plane's estimate costs more than half the
+  // castable pixels, and the frame casts every pixel after all.
   const Scene city = loadScene("builtin:city?blocks=4", true);
-  const Camera street = test::pathFrame(city, 0, 4, 192, 144);
   HybridRenderer auto_(city, test::renderOptions("lzb", 2), HybridParams{});
-  FrameStats cs;
-  test::renderFrame(auto_, street, &cs);
+  FrameStats cs, small;
+  test::renderFrame(auto_, test::pathFrame(city, 0, 4, 640, 480), &cs);
   EXPECT_EQ(cs.shared.value("every_pixel_cast", -1.0), 0.0);
   EXPECT_LT(cs.shared.value("probe_triangles", 1e9), cs.shared.value("probe_finished_pixels", 0.0));
+  EXPECT_LT(cs.shared.value("plane_cost", 1e9),
+            HybridParams::kCastPixelCost * cs.shared.value("castable_pixels", 0.0));
+  const Camera street = test::pathFrame(city, 0, 4, 192, 144);
+  test::renderFrame(auto_, street, &small);
+  EXPECT_EQ(small.shared.value("every_pixel_cast", -1.0), 1.0);
+  EXPECT_LT(small.shared.value("probe_triangles", 1e9),
+            small.shared.value("probe_finished_pixels", 0.0));
+  EXPECT_EQ(small.shared.value("castable_pixels", 0.0), 192.0 * 144.0);
 
   HybridParams rays;
   rays.frameWay = hybrid::FrameWay::kRays;
