@@ -25,6 +25,8 @@ InputError tooInstanced() {
 // limit, before its lists outgrow memory.
 struct CullCounts {
   std::atomic<size_t> paths{0}, leaves{0};
+  std::atomic<uint64_t> triangles{0};
+  uint64_t triangleBudget = std::numeric_limits<uint64_t>::max();
 };
 
 // A child instance to visit: its node, placement and ID base.
@@ -56,6 +58,7 @@ class Culler {
              std::vector<ChildVisit>* deferred = nullptr) {
     const NodeAccel& a = accel_.node(node);
     if (a.empty()) return;
+    if (listed_.triangles.load(std::memory_order_relaxed) >= listed_.triangleBudget) return;
     const bool hasTriangles = !scene_.nodes[node].mesh.empty();
     CullPath p;
     p.node = node;
@@ -97,6 +100,7 @@ class Culler {
       for (uint32_t i : a.leafInstances(leaf)) instances.push_back(i);
     });
     const size_t added = out.leaves.size() - leavesBefore;
+    listed_.triangles.fetch_add(leafTriangles, std::memory_order_relaxed);
     if (listLeaves) {
       CullPath& listed = out.paths[pathIndex];
       listed.firstLeaf = uint32_t(leavesBefore);
@@ -169,7 +173,7 @@ void joinParts(std::span<const CulledScene> parts, CulledScene& out, int threads
 }  // namespace
 
 void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, int threads,
-               const LeafFilter* filter, double farDepth) {
+               const LeafFilter* filter, double farDepth, uint64_t triangleBudget) {
   // Part 0 is the root's own, part k + 1 its visible instance k's, walked in parallel; the parts
   // are joined in that order, so the result is the serial walk's whatever the thread count.
   std::vector<CulledScene>& parts = out.parts;
@@ -181,6 +185,7 @@ void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, in
   };
   clear(parts[0]);
   CullCounts listed;
+  listed.triangleBudget = triangleBudget;
   Culler culler(accel, camera, farDepth, filter, listed);
   std::vector<ChildVisit> children;
   culler.visit(accel.scene().root, glm::dmat4(1.0), 0, parts[0], &children);

@@ -65,8 +65,12 @@ CulledScene cullScene(const LzbAccel& accel, const Camera& camera, int threads =
 // The same into `out` (cleared first), reusing its memory frame after frame. With farDepth
 // nearer than the camera's far plane, the frustum ends there: every leaf whose content box is
 // not wholly beyond that view depth is listed, as the whole cull lists it.
+// With a triangle budget, the walk stops listing placements once the listed leaves hold that
+// many triangles: the result is then incomplete and holds at least the budget (a probe that
+// only asks whether that many lie in front of a depth).
 void cullScene(const LzbAccel& accel, const Camera& camera, CulledScene& out, int threads = 1,
                const LeafFilter* filter = nullptr,
-               double farDepth = std::numeric_limits<double>::infinity());
+               double farDepth = std::numeric_limits<double>::infinity(),
+               uint64_t triangleBudget = std::numeric_limits<uint64_t>::max());
 
 }  // namespace lzb::localz

@@ -144,8 +144,9 @@ void LzbRenderer::render(const Camera& camera, int /*frame*/, const WorkShare& s
   countFrame(f, stats);
 }
 
-void LzbRenderer::cull(Frame& f, double farDepth) {
-  cullScene(*accel_, *f.camera, culled_, options_.threads, f.leafFilter, farDepth);
+void LzbRenderer::cull(Frame& f, double farDepth, uint64_t triangleBudget) {
+  cullScene(*accel_, *f.camera, culled_, options_.threads, f.leafFilter, farDepth,
+            triangleBudget);
 }
 
 const CoarseHits& LzbRenderer::castCoarseRays(Frame& f) const {

@@ -82,8 +82,10 @@ class LzbRenderer : public Renderer {
     std::optional<CoarseHits> coarse;  // the plane's coarse rays, when cast before it
   };
   // 1. Hierarchical view-frustum culling of the octrees (up to view depth farDepth when it is
-  // nearer than the camera's far plane: a composing method's partial cull).
-  void cull(Frame& f, double farDepth = std::numeric_limits<double>::infinity());
+  // nearer than the camera's far plane: a composing method's partial cull; with a triangle
+  // budget, a probe's, which may stop once that many are listed: cullScene).
+  void cull(Frame& f, double farDepth = std::numeric_limits<double>::infinity(),
+            uint64_t triangleBudget = std::numeric_limits<uint64_t>::max());
   // The plane's coarse rays for this frame, cast once and kept in f.coarse for the plane.
   const CoarseHits& castCoarseRays(Frame& f) const;
   // The median view depth of the coarse rays' hits (camera far without any hit).

@@ -217,11 +217,17 @@ ProbeCounts HybridRenderer::probeCounts(localz::LzbRenderer::Frame& f,
   c.sceneTriangles = scene_.expandedTriangles();
   const std::optional<ProbePlane> plane = probePlane(*f.camera, frameDepths);
   if (!plane) return c;
-  lzb_.cull(f, plane->depth);
+  // The choice asks whether the triangles reach the finished pixels (or a share of them), so the
+  // cull may stop there, and the count is capped there: the same count whatever the threads.
+  const uint64_t budget = uint64_t(std::ceil(plane->finished));
+  lzb_.cull(f, plane->depth, budget);
   for (const localz::CullPath& p : lzb_.culled().paths) {
     if (p.drawnElsewhere || p.subtree) ++c.sampledUnits;
     c.triangles += p.leafTriangles;
   }
+  // Past the budget the walk's order decides what was listed: say only that it was reached.
+  if (c.triangles >= budget) c.triangles = budget, c.sampledUnits = 0;
+  c.sampledUnits = std::min<uint64_t>(c.sampledUnits, 1);
   return c;
 }
 
