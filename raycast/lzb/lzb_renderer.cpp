@@ -149,17 +149,12 @@ void LzbRenderer::cull(Frame& f, double farDepth, uint64_t triangleBudget) {
             triangleBudget);
 }
 
-const CoarseHits& LzbRenderer::castCoarseRays(Frame& f) const {
-  if (!f.coarse) {
-    CoarseHits& cast = f.coarse.emplace();
-    cast.mean = PartitionPlane::coarseRayCast(*embree_, *f.camera, lzb_.planeGrid, &cast.depths,
-                                              options_.threads);
-  }
-  return *f.coarse;
-}
-
 double LzbRenderer::medianCoarseHit(Frame& f) const {
-  const CoarseHits& cast = castCoarseRays(f);
+  if (!f.coarse)
+    f.coarse = PartitionPlane::coarseHitsOf(
+        PartitionPlane::coarseRayDepths(*embree_, *f.camera, lzb_.planeGrid, options_.threads),
+        *f.camera);
+  const CoarseHits& cast = *f.coarse;
   if (cast.depths.empty()) return f.camera->farPlane();
   std::vector<double> hits = cast.depths;  // reordered below; the plane gets them as cast
   const auto mid = hits.begin() + std::ptrdiff_t(hits.size() / 2);

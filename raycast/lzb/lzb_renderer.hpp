@@ -86,9 +86,8 @@ class LzbRenderer : public Renderer {
   // budget, a probe's, which may stop once that many are listed: cullScene).
   void cull(Frame& f, double farDepth = std::numeric_limits<double>::infinity(),
             uint64_t triangleBudget = std::numeric_limits<uint64_t>::max());
-  // The plane's coarse rays for this frame, cast once and kept in f.coarse for the plane.
-  const CoarseHits& castCoarseRays(Frame& f) const;
-  // The median view depth of the coarse rays' hits (camera far without any hit).
+  // The median view depth of the plane's coarse rays' hits (camera far without any hit); the
+  // rays are cast unless f.coarse holds them already, and kept there for the plane.
   double medianCoarseHit(Frame& f) const;
   // 2. The partition plane z_clip.
   void placePlane(Frame& f);

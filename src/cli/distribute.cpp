@@ -196,7 +196,7 @@ class PartRenderer : public Renderer {
     Stopwatch clock;
     std::vector<double> depths(size_t(-most), std::numeric_limits<double>::infinity());
     for (FrameProbe* p : probes) {
-      const std::vector<double> own = p->coarseRayDepths(camera);
+      const std::span<const double> own = p->coarseRayDepths(camera);
       for (size_t k = 0; k < depths.size(); ++k) depths[k] = std::min(depths[k], own[k]);
     }
     if (share.minDoubles) share.minDoubles(depths);

@@ -27,8 +27,9 @@ class FrameProbe {
   // The coarse rays of this frame's probe; 0 when the way is not probed (--frame-way local or
   // rays).
   virtual size_t probeRays(const Camera& camera) const = 0;
-  // Phase 1: this part's nearest hit depth per coarse ray (infinity: none).
-  virtual std::vector<double> coarseRayDepths(const Camera& camera) = 0;
+  // Phase 1: this part's nearest hit depth per coarse ray (infinity: none), valid until its next
+  // call.
+  virtual std::span<const double> coarseRayDepths(const Camera& camera) = 0;
   // Phase 2: this part's counts in front of the probe's plane, placed from the frame's depths.
   virtual ProbeCounts probe(const Camera& camera, std::span<const double> frameDepths) = 0;
   // The choice from the frame's depths and counts (casting every pixel, or not); its figures go

@@ -105,12 +105,11 @@ FrameStats HybridRenderer::setupStats() const {
   return s;
 }
 
-localz::LzbRenderer::Frame HybridRenderer::beginFrame(const Camera& camera,
-                                                      const WorkShare& share) {
+localz::LzbRenderer::Frame HybridRenderer::beginFrame(const Camera& camera, const WorkShare& share,
+                                                      const PointParams& pp) {
   localz::LzbRenderer::Frame f;
   f.camera = &camera;
   f.share = share;
-  const PointParams pp = params_.pointParams(camera.width(), camera.height());
   rule_ = std::make_unique<SampledLeafRule>(lzb_.accel(), areas_, camera.pixelsPerUnitAt(1.0),
                                             pp.thresholdPx);
   f.leafFilter = rule_.get();  // the cull leaves wholly sampled nodes out
@@ -120,8 +119,8 @@ localz::LzbRenderer::Frame HybridRenderer::beginFrame(const Camera& camera,
 void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& share,
                             Framebuffer& fb, FrameStats& stats) {
   requireFrameSize(fb, camera, "hybrid");
-  localz::LzbRenderer::Frame f = beginFrame(camera, share);
   const PointParams pp = params_.pointParams(camera.width(), camera.height());
+  localz::LzbRenderer::Frame f = beginFrame(camera, share, pp);
   Stopwatch clock;
   bool everyPixel = params_.frameWay == FrameWay::kRays;
   const bool byParts = decided_.has_value();
@@ -178,14 +177,15 @@ size_t HybridRenderer::probeRays(const Camera& camera) const {
   return size_t(std::clamp(grid, 1, camera.width())) * size_t(std::clamp(grid, 1, camera.height()));
 }
 
-std::vector<double> HybridRenderer::coarseRayDepths(const Camera& camera) {
+std::span<const double> HybridRenderer::coarseRayDepths(const Camera& camera) {
   coarseDepths_ = localz::PartitionPlane::coarseRayDepths(
       lzb_.embree(), camera, lzb_.options().planeGrid, options_.threads);
   return coarseDepths_;
 }
 
 ProbeCounts HybridRenderer::probe(const Camera& camera, std::span<const double> frameDepths) {
-  localz::LzbRenderer::Frame f = beginFrame(camera, WorkShare{});
+  localz::LzbRenderer::Frame f =
+      beginFrame(camera, WorkShare{}, params_.pointParams(camera.width(), camera.height()));
   return probeCounts(f, frameDepths);
 }
 

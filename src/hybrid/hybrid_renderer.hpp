@@ -100,7 +100,7 @@ class HybridRenderer : public Renderer, public FrameProbe {
 
   // Step 0 over the parts of a data-parallel scene (frame_probe.hpp).
   size_t probeRays(const Camera& camera) const override;
-  std::vector<double> coarseRayDepths(const Camera& camera) override;
+  std::span<const double> coarseRayDepths(const Camera& camera) override;
   ProbeCounts probe(const Camera& camera, std::span<const double> frameDepths) override;
   bool everyPixelPays(const Camera& camera, std::span<const double> frameDepths,
                       const ProbeCounts& frame, FrameStats& stats) const override;
@@ -109,8 +109,9 @@ class HybridRenderer : public Renderer, public FrameProbe {
   const localz::LzbRenderer& lzb() const { return lzb_; }
 
  private:
-  // A frame's state for the stages, with the point pass's rule for this camera.
-  localz::LzbRenderer::Frame beginFrame(const Camera& camera, const WorkShare& share);
+  // A frame's state for the stages, with the point pass's rule for this camera and pp.
+  localz::LzbRenderer::Frame beginFrame(const Camera& camera, const WorkShare& share,
+                                        const PointParams& pp);
   // Step 0 (--frame-way auto) of a frame alone: casts the coarse rays (kept for the plane),
   // probes and chooses.
   bool castEveryPixelPays(localz::LzbRenderer::Frame& f, FrameStats& stats);
