@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "src/core/range_pieces.hpp"
+
 namespace lzb {
 
 namespace {
@@ -327,10 +329,8 @@ void binChunks(const std::vector<uint64_t>& first, uint64_t lo, uint64_t hi,
 #pragma omp for schedule(dynamic, 1)
     for (long c = 0; c < chunks; ++c) {
       const uint64_t begin = lo + uint64_t(c) * chunk, end = std::min(hi, begin + chunk);
-      // The last range starting at or before begin (empty ranges share their start).
-      size_t r = size_t(std::upper_bound(first.begin(), first.end(), begin) - first.begin()) - 1;
-      for (uint64_t g = begin; g < end; g = first[++r])
-        body(binner, r, size_t(g - first[r]), size_t(std::min(end, first[r + 1]) - first[r]));
+      forRangePieces(first, begin, end,
+                     [&](size_t r, size_t from, size_t to) { body(binner, r, from, to); });
     }
     setUp += binner.setUp;
     clipped += binner.clipped;
@@ -409,9 +409,7 @@ void NativeRasterizer::drawSoup(const Camera& camera, const TriangleSoup& soup, 
   threads = std::max(threads, 1);
   counts_ = {};
   clearBins(threads, fb.height);
-  std::vector<uint64_t> first(soup.ranges.size() + 1, 0);
-  for (size_t r = 0; r < soup.ranges.size(); ++r)
-    first[r + 1] = first[r] + (soup.ranges[r].end - soup.ranges[r].begin);
+  const std::vector<uint64_t> first = rangeStarts(soup.ranges);
   const PassGeometry geometry(camera, fb.width, fb.height, 0.0);
   const glm::dmat3 toView =
       glm::transpose(glm::dmat3(camera.right(), camera.up(), camera.forward()));
