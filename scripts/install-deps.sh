@@ -11,6 +11,7 @@ packages=(
   libglm-dev libembree-dev libosmesa6-dev libopenexr-dev libpng-dev libopenimageio-dev
   openimageio-tools  # OpenImageIO's CMake config fails without its tools' files
   libassimp-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev librandom123-dev
+  libabsl-dev
   libgtest-dev
 )
 for arg in "$@"; do

@@ -49,6 +49,8 @@ class Camera {
   double nearPlane() const { return near_; }
   double farPlane() const { return far_; }
   double fovyDegrees() const { return fovy_; }
+  double tanHalfX() const { return tanHalfX_; }  // tan of half the horizontal field of view
+  double tanHalfY() const { return tanHalfY_; }
   int width() const { return width_; }
   int height() const { return height_; }
   const CameraSpec& spec() const { return spec_; }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "src/core/scene.hpp"
+#include "src/sampletree/cube_projection.hpp"
 
 namespace lzb::sampletree {
 
@@ -23,22 +24,14 @@ struct PixelMask {
 
 // The screen rectangle of the cube around the node's bounding sphere; the whole image when a
 // corner is not in front of the near plane.
-void markSphere(const SampleTree& tree, const TreeNode& node, const Camera& camera, PixelMask& m) {
-  const Bounds cell = tree.cellBounds(node);
+void markSphere(const SampleTree& tree, const TreeNode& node, const CubeProjector& cubes,
+                PixelMask& m) {
   const double r = 0.5 * std::sqrt(3.0) * tree.cellSize(node);
-  Bounds sphere;
-  sphere.lo = cell.center() - glm::dvec3(r);
-  sphere.hi = cell.center() + glm::dvec3(r);
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (int k = 0; k < 8; ++k) {
-    const glm::dvec3 p = camera.project(sphere.corner(k));
-    if (!(p.z >= camera.nearPlane())) {
-      m.mark(0, 0, m.width, m.height);
-      return;
-    }
-    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
-  }
-  m.mark(x0, y0, x1, y1);
+  const ScreenRect rect = cubes.rect(tree.cellBounds(node).center() - glm::dvec3(r), 2.0 * r);
+  if (rect.behind)
+    m.mark(0, 0, m.width, m.height);
+  else
+    m.mark(rect.x0, rect.y0, rect.x1, rect.y1);
 }
 
 // The splat's d x d pixels: those whose centres are nearest its projection (splatter.hpp).
@@ -59,8 +52,9 @@ uint64_t approximatedPixels(const SampleTree& tree, const std::vector<uint32_t>&
                             const Camera& camera, int splat) {
   PixelMask m{camera.width(), camera.height(),
               std::vector<uint8_t>(size_t(camera.width()) * size_t(camera.height()), 0)};
+  const CubeProjector cubes(camera);
   for (uint32_t i : stops) {
-    markSphere(tree, tree.nodes[i], camera, m);
+    markSphere(tree, tree.nodes[i], cubes, m);
     markSplat(tree.nodes[i], camera, splat, m);
   }
   return uint64_t(std::count(m.bits.begin(), m.bits.end(), uint8_t(1)));

@@ -181,7 +181,7 @@ void SampleTreeRenderer::render(const Camera& camera, int frame, const WorkShare
 // Every rank traverses alike; this rank keeps its run of the visits, dealt by cost.
 void SampleTreeRenderer::traverseAndDeal(Frame& f) const {
   const SampleTree& tree = *f.tree;
-  f.walk = traverse(tree, *f.camera, st_.splat, st_.stopDraw);
+  f.walk = traverse(tree, *f.camera, st_.splat, st_.stopDraw, options_.threads);
   std::vector<double> costs;
   costs.reserve(f.walk.visits.size());
   for (const Visit& v : f.walk.visits)

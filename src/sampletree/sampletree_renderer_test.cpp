@@ -1,11 +1,15 @@
 // The sample tree's frame: without stopping it is the exact z-buffer image; far away it is one
 // splat; rank shares composite to the 1-rank image on any thread count.
+#include "src/sampletree/sampletree_renderer.hpp"
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 
-#include "src/sampletree/sampletree_renderer.hpp"
+#include "src/sampletree/cube_projection.hpp"
 #include "src/sampletree/traversal.hpp"
+#include "src/sampletree/tree_build.hpp"
 #include "src/scene/load.hpp"
 #include "src/zbuffer/native_raster.hpp"
 #include "tests/support/cameras.hpp"
@@ -149,6 +153,50 @@ TEST(Traversal, ProjectedCellShrinksWithDistance) {
   EXPECT_NEAR(at(1000) / at(2000), 4.0, 0.05);
   // A corner behind the near plane: never a stop.
   EXPECT_TRUE(std::isinf(at(0.5)));
+}
+
+TEST(Traversal, ThreadsWalkSubtreesAndGiveTheOneThreadWalk) {
+  const Scene scene = loadScene("builtin:landscape?objects=300", true);
+  const SampleTree tree = buildTree(scene, TreeParams{13.8, 9, 8}, 2);
+  const Camera camera = nearCamera(scene);
+  const Traversal one = traverse(tree, camera, 1, StopDraw::kSplat, 1);
+  // Deep enough that subtrees of the task level are walked by the threads.
+  size_t deep = 0;
+  for (const Visit& v : one.visits) deep += tree.nodes[v.node].level > 4;
+  ASSERT_GT(deep, 100u);
+  for (int threads : {2, 3}) {
+    const Traversal many = traverse(tree, camera, 1, StopDraw::kSplat, threads);
+    ASSERT_EQ(many.visits.size(), one.visits.size()) << threads;
+    for (size_t k = 0; k < one.visits.size(); ++k) {
+      EXPECT_EQ(many.visits[k].node, one.visits[k].node);
+      EXPECT_EQ(many.visits[k].splat, one.visits[k].splat);
+    }
+    EXPECT_EQ(many.stops, one.stops);
+    EXPECT_EQ(many.visited, one.visited);
+    EXPECT_EQ(many.culled, one.culled);
+  }
+}
+
+TEST(CubeProjector, GivesTheRectangleOfTheCornersProjections) {
+  const Camera camera = test::lookAtCamera({3, 2, 9}, {0.5, 0.2, 0}, 0.1, 100, kW, kH);
+  const CubeProjector cubes(camera);
+  for (const glm::dvec3 lo : {glm::dvec3(0, 0, 0), glm::dvec3(-2, 1, 3), glm::dvec3(1, -1, -4)}) {
+    const double side = 0.7;
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    for (int k = 0; k < 8; ++k) {
+      const glm::dvec3 p = camera.project(lo + side * glm::dvec3(k & 1, (k >> 1) & 1, k >> 2));
+      x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y),
+      y1 = std::max(y1, p.y);
+    }
+    const ScreenRect r = cubes.rect(lo, side);
+    EXPECT_FALSE(r.behind);
+    EXPECT_NEAR(r.x0, x0, 1e-9);
+    EXPECT_NEAR(r.x1, x1, 1e-9);
+    EXPECT_NEAR(r.y0, y0, 1e-9);
+    EXPECT_NEAR(r.y1, y1, 1e-9);
+  }
+  // A cube around the eye reaches behind the near plane.
+  EXPECT_TRUE(cubes.rect({2.5, 1.5, 8.5}, 1.0).behind);
 }
 
 }  // namespace

@@ -1,63 +1,122 @@
 #include "src/sampletree/traversal.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "src/core/scene.hpp"
+#include "src/sampletree/cube_projection.hpp"
 
 namespace lzb::sampletree {
 
 namespace {
 
-// Every triangle of a node lies in its cell's bounding sphere (cell_octree.hpp): cull that.
-bool sphereOutside(const Frustum& f, const glm::dvec3& centre, double radius) {
-  for (const Plane& p : f.planes)
-    if (p.distance(centre) < -radius * glm::length(p.n)) return true;
-  return false;
+// Subtrees rooted at this level are walked in parallel (a flat scene's tree has ~10^2 of them
+// in view); their parts of the preorder lists are joined in order, so the result is the
+// one-thread walk's whatever the thread count.
+constexpr uint8_t kTaskLevel = 4;
+
+class Walk {
+ public:
+  Walk(const SampleTree& tree, const Camera& camera, int splat, StopDraw stopDraw)
+      : tree_(tree),
+        frustum_(camera.frustum()),
+        cubes_(camera),
+        stopPixels_(double(splat) * double(splat)),
+        stopDraw_(stopDraw) {
+    for (size_t p = 0; p < frustum_.planes.size(); ++p)
+      normLength_[p] = glm::length(frustum_.planes[p].n);
+  }
+
+  // Walks the preorder nodes [begin, end) into parts.back(). With `tasks`, a node of kTaskLevel
+  // is not walked but left as a task: its index goes to `tasks`, and two parts are added (its
+  // walk's, then the walk's after it).
+  void run(size_t begin, size_t end, std::vector<Traversal>& parts,
+           std::vector<uint32_t>* tasks) const {
+    for (size_t i = begin; i < end;) {
+      const TreeNode& node = tree_.nodes[i];
+      if (tasks && node.level == kTaskLevel) {
+        tasks->push_back(uint32_t(i));
+        parts.resize(parts.size() + 2);
+        i = node.subtreeEnd;
+        continue;
+      }
+      i = step(i, parts.back());
+    }
+  }
+
+ private:
+  // Visits node i; returns the next node to visit.
+  size_t step(size_t i, Traversal& out) const {
+    const TreeNode& node = tree_.nodes[i];
+    const double side = tree_.cellSize(node);
+    const glm::dvec3 lo =
+        tree_.origin + side * glm::dvec3(node.cell[0], node.cell[1], node.cell[2]);
+    if (sphereOutside(lo + 0.5 * side, 0.5 * std::sqrt(3.0) * side)) {
+      ++out.culled;
+      return node.subtreeEnd;
+    }
+    ++out.visited;
+    const ScreenRect rect = cubes_.rect(lo, side);
+    if (!rect.behind && rect.area() <= stopPixels_) {
+      out.stops.push_back(uint32_t(i));
+      if (stopDraw_ == StopDraw::kTriangles) {
+        if (node.triangleCount > 0) out.visits.push_back({uint32_t(i), false});
+      } else if (node.representativeId != kNoId) {
+        out.visits.push_back({uint32_t(i), true});
+      }
+      return node.subtreeEnd;
+    }
+    if (node.triangleCount > 0) out.visits.push_back({uint32_t(i), false});
+    return i + 1;
+  }
+
+  // Every triangle of a node lies in its cell's bounding sphere (cell_octree.hpp): cull that.
+  bool sphereOutside(const glm::dvec3& centre, double radius) const {
+    for (size_t p = 0; p < frustum_.planes.size(); ++p)
+      if (frustum_.planes[p].distance(centre) < -radius * normLength_[p]) return true;
+    return false;
+  }
+
+  const SampleTree& tree_;
+  const Frustum frustum_;
+  const CubeProjector cubes_;
+  const double stopPixels_;
+  const StopDraw stopDraw_;
+  std::array<double, 6> normLength_{};
+};
+
+void append(Traversal& to, const Traversal& part) {
+  to.visits.insert(to.visits.end(), part.visits.begin(), part.visits.end());
+  to.stops.insert(to.stops.end(), part.stops.begin(), part.stops.end());
+  to.visited += part.visited;
+  to.culled += part.culled;
 }
 
 }  // namespace
 
 double projectedCellPixels(const SampleTree& tree, const TreeNode& node, const Camera& camera) {
   const Bounds b = tree.cellBounds(node);
-  double x0 = std::numeric_limits<double>::infinity(), y0 = x0, x1 = -x0, y1 = -x0;
-  for (int k = 0; k < 8; ++k) {
-    const glm::dvec3 p = camera.project(b.corner(k));
-    if (!(p.z >= camera.nearPlane())) return std::numeric_limits<double>::infinity();
-    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x);
-    y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
-  }
-  return (x1 - x0) * (y1 - y0);
+  const ScreenRect rect = CubeProjector(camera).rect(b.lo, tree.cellSize(node));
+  return rect.behind ? std::numeric_limits<double>::infinity() : rect.area();
 }
 
-Traversal traverse(const SampleTree& tree, const Camera& camera, int splat, StopDraw stopDraw) {
-  Traversal out;
-  const Frustum frustum = camera.frustum();
-  const double stopPixels = double(splat) * double(splat);
-  const size_t n = tree.nodes.size();
-  // Preorder: the node after u is u's first child, or, when u has none, the next subtree.
-  for (size_t i = 0; i < n;) {
-    const TreeNode& node = tree.nodes[i];
-    const double side = tree.cellSize(node);
-    if (sphereOutside(frustum, tree.cellBounds(node).center(), 0.5 * std::sqrt(3.0) * side)) {
-      ++out.culled;
-      i = node.subtreeEnd;
-      continue;
-    }
-    ++out.visited;
-    if (projectedCellPixels(tree, node, camera) <= stopPixels) {
-      out.stops.push_back(uint32_t(i));
-      if (stopDraw == StopDraw::kTriangles) {
-        if (node.triangleCount > 0) out.visits.push_back({uint32_t(i), false});
-      } else if (node.representativeId != kNoId) {
-        out.visits.push_back({uint32_t(i), true});
-      }
-      i = node.subtreeEnd;
-      continue;
-    }
-    if (node.triangleCount > 0) out.visits.push_back({uint32_t(i), false});
-    ++i;
+Traversal traverse(const SampleTree& tree, const Camera& camera, int splat, StopDraw stopDraw,
+                   int threads) {
+  const Walk walk(tree, camera, splat, stopDraw);
+  std::vector<Traversal> parts(1);
+  std::vector<uint32_t> tasks;
+  walk.run(0, tree.nodes.size(), parts, &tasks);
+#pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(threads, 1))
+  for (size_t t = 0; t < tasks.size(); ++t) {
+    std::vector<Traversal> mine(1);
+    walk.run(tasks[t], tree.nodes[tasks[t]].subtreeEnd, mine, nullptr);
+    parts[2 * t + 1] = std::move(mine.front());
   }
+  Traversal out = std::move(parts.front());
+  for (size_t p = 1; p < parts.size(); ++p) append(out, parts[p]);
   return out;
 }
 

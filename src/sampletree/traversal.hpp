@@ -32,8 +32,9 @@ double projectedCellPixels(const SampleTree& tree, const TreeNode& node, const C
 // 4.2's own triangles).
 enum class StopDraw { kSplat, kTriangles };
 
+// Walked by up to `threads` threads; the result does not depend on their number.
 Traversal traverse(const SampleTree& tree, const Camera& camera, int splat,
-                   StopDraw stopDraw = StopDraw::kSplat);
+                   StopDraw stopDraw = StopDraw::kSplat, int threads = 1);
 
 // Section 6.2's prefetch: the nodes with triangles among each stop and the `levels` levels below
 // it, in preorder: what the next frames draw when the viewer comes closer (a stop that drew a

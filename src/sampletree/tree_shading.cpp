@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
-#include <unordered_set>
 
 #include "src/core/range_pieces.hpp"
 #include "src/core/shading.hpp"
@@ -17,7 +16,7 @@ namespace {
 // A bit per hash of an ID: most drawn triangles are not wanted, and one bit test says so.
 class IdFilter {
  public:
-  explicit IdFilter(const std::unordered_set<uint64_t>& ids) : bits_(kWords, 0) {
+  explicit IdFilter(const absl::flat_hash_set<uint64_t>& ids) : bits_(kWords, 0) {
     for (uint64_t id : ids) bits_[slot(id) >> 6] |= uint64_t(1) << (slot(id) & 63);
   }
   bool mayHold(uint64_t id) const { return bits_[slot(id) >> 6] >> (slot(id) & 63) & 1; }
@@ -43,6 +42,7 @@ ShadingInputs shadingInputs(const glm::vec3& a, const glm::vec3& b, const glm::v
 }
 
 void TreeShading::addRepresentatives(const SampleTree& table, std::span<const uint32_t> nodes) {
+  known_.reserve(known_.size() + nodes.size());
   for (uint32_t i : nodes) {
     const TreeNode& n = table.nodes[i];
     const ShadingInputs s{
@@ -53,8 +53,8 @@ void TreeShading::addRepresentatives(const SampleTree& table, std::span<const ui
 }
 
 // The IDs fb shows that are not kept yet (each once).
-std::unordered_set<uint64_t> TreeShading::unknownShown(const Framebuffer& fb) const {
-  std::unordered_set<uint64_t> unknown;
+absl::flat_hash_set<uint64_t> TreeShading::unknownShown(const Framebuffer& fb) const {
+  absl::flat_hash_set<uint64_t> unknown;
   uint64_t last = kNoId;
   for (uint64_t id : fb.id) {
     if (id == last || id == kNoId) continue;
@@ -65,7 +65,7 @@ std::unordered_set<uint64_t> TreeShading::unknownShown(const Framebuffer& fb) co
 }
 
 void TreeShading::keepShown(const Framebuffer& fb, const ColouredSoup& soup, int threads) {
-  const std::unordered_set<uint64_t> want = unknownShown(fb);
+  const absl::flat_hash_set<uint64_t> want = unknownShown(fb);
   if (want.empty()) return;
   const IdFilter filter(want);
   std::vector<std::vector<uint64_t>> found(size_t(std::max(threads, 1)));  // triangle indices

@@ -7,13 +7,13 @@
 // elsewhere give the same colour, on any rank. Each rank shades its own pixels before compositing
 // (the renderer's colour travels with the key), and records, after each soup it draws, the inputs
 // of the triangles its framebuffer then shows: a pixel's final triangle is always among them.
-#include <cstdint>
-#include <span>
-#include <unordered_map>
-#include <unordered_set>
-#include <vector>
+#include <absl/container/flat_hash_map.h>
+#include <absl/container/flat_hash_set.h>
 
+#include <cstdint>
 #include <glm/glm.hpp>
+#include <span>
+#include <vector>
 
 #include "src/core/camera.hpp"
 #include "src/core/color.hpp"
@@ -55,8 +55,8 @@ class TreeShading {
     ShadingInputs inputs;
     Rgba8 colour;
   };
-  std::unordered_set<uint64_t> unknownShown(const Framebuffer& fb) const;
-  std::unordered_map<uint64_t, Entry> known_;
+  absl::flat_hash_set<uint64_t> unknownShown(const Framebuffer& fb) const;
+  absl::flat_hash_map<uint64_t, Entry> known_;
 };
 
 }  // namespace lzb::sampletree
