@@ -39,7 +39,7 @@ std::vector<const NodePayload*> NodeCache::acquire(std::span<const uint32_t> nod
       demand_.push_back(n);
       ++missing;
     } else if (e.state == State::kResident) {
-      if (e.pins == 0) lru_.erase(LruKey{e.frame, e.seq, n});
+      if (e.pins == 0) unlinkLru(e);
       ++counters_.hits;
     } else {
       ++missing;  // being prefetched now
@@ -83,7 +83,7 @@ void NodeCache::touch(std::span<const uint32_t> nodes) {
   for (uint32_t n : nodes) {
     const auto it = entries_.find(n);
     if (it == entries_.end() || it->second.state != State::kResident || it->second.pins > 0) continue;
-    lru_.erase(LruKey{it->second.frame, it->second.seq, n});
+    unlinkLru(it->second);
     unpinToLru(n, it->second);
   }
 }
@@ -217,13 +217,12 @@ void NodeCache::takePrefetch(std::vector<uint32_t>& batch) {
 bool NodeCache::makeRoom(uint64_t bytes, bool demand) {
   if (bytes > budget_) return false;
   while (used_ + bytes > budget_) {
-    if (lru_.empty()) return false;
-    const auto oldest = lru_.begin();
-    if (!demand && std::get<0>(*oldest) >= frame_) return false;
-    const uint32_t victim = std::get<2>(*oldest);
+    if (!oldest_) return false;
+    if (!demand && oldest_->frame >= frame_) return false;
+    const uint32_t victim = oldest_->node;
     used_ -= payloadBytes(source_.table().nodes[victim]);
+    unlinkLru(*oldest_);
     entries_.erase(victim);
-    lru_.erase(oldest);
     ++counters_.evicted;
   }
   return true;
@@ -243,9 +242,18 @@ void NodeCache::finishLoad(uint32_t node, std::unique_ptr<NodePayload> payload, 
 }
 
 void NodeCache::unpinToLru(uint32_t node, Entry& e) {
+  e.node = node;
   e.frame = frame_;
-  e.seq = ++seq_;
-  lru_.insert(LruKey{e.frame, e.seq, node});
+  e.older = newest_;
+  e.newer = nullptr;
+  (newest_ ? newest_->newer : oldest_) = &e;
+  newest_ = &e;
+}
+
+void NodeCache::unlinkLru(Entry& e) {
+  (e.older ? e.older->newer : oldest_) = e.newer;
+  (e.newer ? e.newer->older : newest_) = e.older;
+  e.older = e.newer = nullptr;
 }
 
 void NodeCache::rethrowLocked() {
