@@ -92,7 +92,8 @@ TEST(SampleTreeCli, OutOfCoreBuildStreamsAPlyFile) {
   const RunResult a = runLzb("build-tree " + ply.string() + " --threads 2 --quiet --out " +
                              (dir / "memory.lzbtree").string());
   ASSERT_EQ(a.status, 0) << a.output;
-  const RunResult b = runLzb("build-tree " + ply.string() + " --threads 2 --mem-mb 4 --out " +
+  // 5 MiB: the budget counts the file's vertex element, which the build holds besides its buckets.
+  const RunResult b = runLzb("build-tree " + ply.string() + " --threads 2 --mem-mb 5 --out " +
                              (dir / "external.lzbtree").string());
   ASSERT_EQ(b.status, 0) << b.output;
   EXPECT_NE(b.output.find("built out of core"), std::string::npos) << b.output;
@@ -125,6 +126,16 @@ TEST(SampleTreeCli, OutOfCoreBuildStreamsAPlyFile) {
         << r.output;
     EXPECT_EQ(std::distance(fs::directory_iterator(bad), fs::directory_iterator()), 2) << name;
   }
+  // The vertex element is held while the file is read: a budget below it is refused, before any
+  // pass, rather than exceeded.
+  const double vertexMb = double(faces - data) / 1048576.0;
+  const RunResult tight =
+      runLzb("build-tree " + ply.string() + " --mem-mb " + std::to_string(0.9 * vertexMb) +
+             " --quiet --out " + (bad / "tree.lzbtree").string());
+  EXPECT_EQ(tight.status, 2) << tight.output;
+  EXPECT_NE(tight.output.find("--mem-mb: " + ply.string() + " holds"), std::string::npos)
+      << tight.output;
+  EXPECT_EQ(std::distance(fs::directory_iterator(bad), fs::directory_iterator()), 2);
 }
 
 // A PLY file the streaming reader leaves to the loader (ASCII) is loaded whole, with a note, and

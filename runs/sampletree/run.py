@@ -13,6 +13,9 @@ one CSV:
   for loads and the frame time (path.csv, one row per frame).
 - splat: far-off splatting sizes 1-5 against raycast in the same run, on the landscape and on a
   sub-pixel field of scanned meshes (the armadillo), frame time and accuracy.
+- trade: at 10^7 triangles (builtin:landscape?objects=400000), trees built with c in {13.8, 4}
+  and leaf sizes {8, 32, 128}, each rendered in core with splat sizes 1 and 2 against raycast:
+  triangles drawn, frame time and accuracy, raycast's frame in the same run.
 - server: the same out-of-core walk on 1 rank, 2 ranks each reading the store, and 2 and 3 ranks
   with --node-server (one rank serving nodes to the others), where the option exists.
 
@@ -50,6 +53,8 @@ SERVER = "builtin:landscape?objects=2000" if QUICK else "builtin:landscape?objec
 FIELD = (f"builtin:replicated?mesh={common.DATA}/armadillo.off&k=2&levels=1" if QUICK else
          f"builtin:replicated?mesh={common.DATA}/armadillo.off&k=4&levels=2")
 SCALE_OBJECTS = 4194304
+TRADE = "builtin:landscape?objects=2000" if QUICK else "builtin:landscape?objects=400000"
+TRADE_TREES = [(13.8, 32), (4.0, 32), (13.8, 8), (4.0, 8), (13.8, 128)]
 SCRATCH = os.environ.get("LZB_SCRATCH", tempfile.gettempdir())
 WAIT = not QUICK and "--no-wait" not in sys.argv
 
@@ -175,6 +180,22 @@ class Study:
             self.add(frame_row("splat", scene, "raycast", 1, rep), cmd)
             os.remove(store)
 
+    def trade_part(self):
+        store = os.path.join(SCRATCH, "lzb-st-trade.lzbtree")
+        for c, leaf in TRADE_TREES:
+            cmd = [common.LZB, "build-tree", TRADE, "--out", store, "--c", str(c),
+                   "--leaf-triangles", str(leaf), "--threads", str(common.CORES), "--quiet"]
+            subprocess.run(cmd, check=True, env=common.ENV)
+            built = shown(cmd)
+            for d in (1, 2):
+                cmd, rep = render(TRADE, ["--method", "sampletree", "--tree", store, "--splat",
+                                          str(d), "--reference", "raycast"], frames=6)
+                self.add(frame_row("trade", TRADE, f"c{c:g}_leaf{leaf}_splat{d}", 1, rep),
+                         f"{built} && {cmd.replace(SCRATCH + '/', 'SCRATCH/')}")
+        os.remove(store)
+        cmd, rep = render(TRADE, ["--method", "raycast"], frames=6)
+        self.add(frame_row("trade", TRADE, "raycast", 1, rep), cmd)
+
     def server_part(self):
         store = os.path.join(SCRATCH, "lzb-st-server.lzbtree")
         build(SERVER, store)
@@ -225,7 +246,13 @@ def plot():
     peer = {r["scene"]: float(r["median_frame_s"]) * 1e3 for r in rows
             if r["part"] == "splat" and r["config"] == "raycast"}
     blocks += [[(1, peer.get(s, float("nan")), 0), (5, peer.get(s, float("nan")), 0)] for s in scenes]
+    trade = [r for r in rows if r["part"] == "trade" and "splat" in r["config"]]
+    blocks += [[(float(r["median_frame_s"]) * 1e3, 100 * float(r["median_correct_rate_covered"]))
+                for r in trade if r["config"].endswith(f"splat{d}")] for d in (1, 2)]
+    trade_peer = [float(r["median_frame_s"]) * 1e3 for r in rows
+                  if r["part"] == "trade" and r["config"] == "raycast"]
     data = common.datafile(blocks)
+    first_trade = 1 + 2 * len(scenes)
     short = [s.replace("builtin:", "").split("&")[0].replace(common.DATA + "/", "") for s in scenes]
     splat_lines = lambda col: ", ".join(  # noqa: E731
         [f"'{data}' index {1 + k} using 1:{col} with linespoints pt {4 + k} title '{t}'"
@@ -233,9 +260,9 @@ def plot():
         ([f"'{data}' index {1 + len(scenes) + k} using 1:2 with lines dt 2 lw 2 title 'raycast, {t}'"
           for k, t in enumerate(short)] if col == 2 else []))
     common.gnuplot(f"""
-set terminal pngcairo size 1000,1100 font ',10' noenhanced
+set terminal pngcairo size 1000,1450 font ',10' noenhanced
 set output '{os.path.join(HERE, f"{NAME}.png")}'
-set multiplot layout 3,1 title "randomized sample tree at {W}x{H} ({common.CORES} cores)"
+set multiplot layout 4,1 title "randomized sample tree at {W}x{H} ({common.CORES} cores)"
 set grid
 set key outside right
 set xlabel 'frame of the {len(walk)}-frame circle (out of core, 16 MiB cache)'
@@ -248,6 +275,9 @@ plot {splat_lines(2)}
 unset logscale y
 set ylabel 'correct pixels, covered (%)'
 plot {splat_lines(3)}
+set xlabel 'frame time (ms), 10^7 landscape in core; trees of c in (13.8, 4), leaf size in (8, 32, 128)'
+{"set arrow from %g, graph 0 to %g, graph 1 nohead dt 2 lw 2" % (trade_peer[0], trade_peer[0]) if trade_peer else ""}
+plot '{data}' index {first_trade} using 1:2 with points pt 7 title 'splat 1', '' index {first_trade + 1} using 1:2 with points pt 5 title 'splat 2 (dashed: raycast)'
 unset multiplot
 """)
 
@@ -264,6 +294,7 @@ if __name__ == "__main__":
         s.path_part()
         s.splat_part()
         s.server_part()
+        s.trade_part()
         if SCALE:
             s.scale_part()
     plot()

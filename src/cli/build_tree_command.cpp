@@ -64,19 +64,32 @@ SceneInput openSceneStream(const std::string& spec, bool quiet) {
   return in;
 }
 
+// The budget left to the build once the input holds what it must while open (a PLY's vertex
+// element, a scene loaded whole): --mem-mb bounds the whole process, not the build alone.
+uint64_t buildBudget(const SceneInput& in, uint64_t memBytes, const std::string& spec) {
+  const uint64_t held = in.chunked ? in.chunked->heldBytes : in.scene->meshBytes();
+  require(held < memBytes, "--mem-mb",
+          spec + " holds " + std::to_string(held >> 20) + " MiB while it is read (" +
+              (in.chunked ? "its vertices" : "the scene, loaded whole") + "), all of the " +
+              std::to_string(memBytes >> 20) + " MiB budget and more: raise it");
+  return memBytes - held;
+}
+
 int runExternalBuild(const BuildTreeArgs& a, const mpi::Group& g,
                      const sampletree::TreeParams& params, int threads) {
   require(std::isfinite(a.memMb) && a.memMb > 0.0 && a.memMb <= kMaxMemMb, "--mem-mb",
           "must be a budget in MiB up to 2^20, got " + std::to_string(a.memMb));
   const uint64_t memBytes = uint64_t(a.memMb * 1024.0 * 1024.0);
   requireMemory(memBytes, "--mem-mb", "the external build");
-  sampletree::ExternalOptions options = sampletree::optionsForMemory(memBytes, params, threads);
   if (!g.root()) return 0;  // one rank builds: the passes are bound by the input and the disk
-  options.progress = !a.quiet;
-  options.scratchDir = std::filesystem::absolute(a.out).parent_path();
-  require(std::filesystem::is_directory(options.scratchDir), "--out",
-          "the folder " + options.scratchDir.string() + " does not exist");
+  const std::filesystem::path scratchDir = std::filesystem::absolute(a.out).parent_path();
+  require(std::filesystem::is_directory(scratchDir), "--out",
+          "the folder " + scratchDir.string() + " does not exist");
   const SceneInput in = openSceneStream(a.scene, a.quiet);
+  sampletree::ExternalOptions options =
+      sampletree::optionsForMemory(buildBudget(in, memBytes, a.scene), params, threads);
+  options.progress = !a.quiet;
+  options.scratchDir = scratchDir;
   Stopwatch clock;
   const sampletree::ExternalReport r =
       sampletree::buildTreeExternal(*in.stream, params, options, threads, a.out);

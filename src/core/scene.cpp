@@ -115,6 +115,16 @@ uint64_t Scene::uniqueTriangles() const {
   return total;
 }
 
+uint64_t Scene::meshBytes() const {
+  uint64_t total = 0;
+  for (const Node& node : nodes)
+    total += node.mesh.positions.capacity() * sizeof(glm::vec3) +
+             node.mesh.normals.capacity() * sizeof(glm::vec3) +
+             node.mesh.colors.capacity() * sizeof(Rgba8) +
+             node.instances.capacity() * sizeof(Instance);
+  return total;
+}
+
 std::optional<Scene::TriangleRef> Scene::resolve(uint64_t id) const {
   if (id >= expandedTriangles()) return std::nullopt;
   TriangleRef ref{root, 0, glm::dmat4(1.0)};

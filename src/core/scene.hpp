@@ -108,6 +108,7 @@ struct Scene {
 
   const Node& rootNode() const { return nodes[root]; }
   uint64_t uniqueTriangles() const;                 // stored once each
+  uint64_t meshBytes() const;                       // what the nodes' meshes hold
   uint64_t expandedTriangles() const { return expandedCount[root]; }
   const Bounds& bounds() const { return nodeBounds[root]; }
   // Offset of instance i's expanded list inside node n's expanded list.

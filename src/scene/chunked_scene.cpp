@@ -51,6 +51,7 @@ std::optional<ChunkedScene> streamedPly(const std::string& spec, bool quiet) {
   c.base.source = spec;
   c.triangles = ply->triangles();
   c.placement = ply->placement();
+  c.heldBytes = ply->heldBytes();
   c.chunks = [ply](const std::function<void(const Mesh&)>& out) {
     ply->forEachChunk(out);
     return ply->stats();

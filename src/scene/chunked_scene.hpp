@@ -24,6 +24,7 @@ struct ChunkedScene {
   uint64_t triangles = 0;     // expected (a generator's before degenerate ones are dropped)
   glm::dmat4 placement{1.0};  // the node's stored frame -> world
   bool generated = false;     // made anew on every pass (a copy on disk may read faster)
+  uint64_t heldBytes = 0;  // held while open (a PLY's vertex element), besides the passes' chunks
   Chunks chunks;              // one pass: hands out the chunks, returns what was kept and dropped
 };
 

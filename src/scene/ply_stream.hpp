@@ -32,6 +32,10 @@ class PlyMeshStream {
   const std::string& where() const { return where_; }
   uint64_t triangles() const { return stats_.loaded; }
   const LoadStats& stats() const { return stats_; }
+  // What the stream holds while open: the vertex element (positions, colours).
+  uint64_t heldBytes() const {
+    return (positions_.capacity() + colours_.capacity()) * sizeof(glm::vec3);
+  }
   // Stored frame -> world, as the loaded scene places the file's triangles (flattenScene).
   const glm::dmat4& placement() const { return placement_; }
   // Hands out the triangles in file order (the loaded scene's ID order) in meshes of about
