@@ -181,7 +181,7 @@ bool NodeCache::takeDemand(std::vector<uint32_t>& batch) {
   while (!demand_.empty() && batch.size() < kMaxNodes) {
     const uint32_t node = demand_.front();
     demand_.pop_front();
-    const uint64_t bytes = payloadBytes(source_.table().nodes[node]);
+    const uint64_t bytes = cachedBytes(source_.table().nodes[node]);
     if (!makeRoom(bytes, true)) {
       error_ = std::make_exception_ptr(std::logic_error(
           "node cache: no room for node " + std::to_string(node) + " within the budget"));
@@ -203,7 +203,7 @@ void NodeCache::takePrefetch(std::vector<uint32_t>& batch) {
   while (!prefetch_.empty() && batch.size() < kMaxNodes && taken < kMaxBytes) {
     const uint32_t node = prefetch_.front();
     prefetch_.pop_front();
-    const uint64_t bytes = payloadBytes(source_.table().nodes[node]);
+    const uint64_t bytes = cachedBytes(source_.table().nodes[node]);
     if (entries_.count(node) || !makeRoom(bytes, false)) continue;
     entries_.try_emplace(node);
     used_ += bytes;
@@ -220,7 +220,7 @@ bool NodeCache::makeRoom(uint64_t bytes, bool demand) {
     if (!oldest_) return false;
     if (!demand && oldest_->frame >= frame_) return false;
     const uint32_t victim = oldest_->node;
-    used_ -= payloadBytes(source_.table().nodes[victim]);
+    used_ -= cachedBytes(source_.table().nodes[victim]);
     unlinkLru(*oldest_);
     entries_.erase(victim);
     ++counters_.evicted;

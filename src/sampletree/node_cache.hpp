@@ -44,7 +44,7 @@ class NodeCache {
   // One frame thread calls beginFrame, acquire, release and prefetch.
   // Starts a frame: drops the previous frame's prefetch queue; nodes used now count as this frame.
   void beginFrame();
-  // Loads (waiting) and pins `nodes` (their payload bytes together at most the budget); the
+  // Loads (waiting) and pins `nodes` (their cachedBytes together at most the budget); the
   // returned payloads stay valid until release(nodes).
   std::vector<const NodePayload*> acquire(std::span<const uint32_t> nodes);
   void release(std::span<const uint32_t> nodes);

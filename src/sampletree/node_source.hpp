@@ -26,6 +26,16 @@ inline uint64_t payloadBytes(const TreeNode& n) {
   return uint64_t(n.triangleCount) * (format::kPositionBytes + format::kIdBytes + format::kColourBytes);
 }
 
+// What a resident node costs the cache besides its payload: its entry in the cache's map, the
+// payload's own object and the heap blocks of its three arrays (allocator headers and rounding).
+constexpr uint64_t kNodeBookkeepingBytes = 256;
+
+// What a node costs the node cache while resident (--cache-mb counts this, not the payload alone:
+// a frame at 10^8 triangles holds ~10^6 nodes, whose bookkeeping alone would be ~256 MB).
+inline uint64_t cachedBytes(const TreeNode& n) {
+  return payloadBytes(n) + kNodeBookkeepingBytes;
+}
+
 class NodeSource {
  public:
   virtual ~NodeSource() = default;

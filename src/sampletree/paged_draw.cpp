@@ -16,9 +16,9 @@ size_t batchEnd(const SampleTree& table, std::span<const uint32_t> nodes, size_t
                 uint64_t budget) {
   uint64_t bytes = 0, triangles = 0;
   size_t end = begin;
-  while (end < nodes.size() && bytes + payloadBytes(table.nodes[nodes[end]]) <= budget &&
+  while (end < nodes.size() && bytes + cachedBytes(table.nodes[nodes[end]]) <= budget &&
          (end == begin || triangles + table.nodes[nodes[end]].triangleCount <= kBatchTriangles)) {
-    bytes += payloadBytes(table.nodes[nodes[end]]);
+    bytes += cachedBytes(table.nodes[nodes[end]]);
     triangles += table.nodes[nodes[end++]].triangleCount;
   }
   if (end == begin) throw std::logic_error("drawPaged: a node larger than the cache budget");

@@ -25,8 +25,8 @@ struct SoupStaging {
   std::vector<Rgba8> colours;
 };
 
-// nodes: each with triangles and its payload within the cache's budget. After each batch,
-// `shading` keeps the inputs of the batch's triangles fb shows (tree_shading.hpp).
+// nodes: each with triangles and its cached bytes (cachedBytes) within the cache's budget. After
+// each batch, `shading` keeps the inputs of the batch's triangles fb shows (tree_shading.hpp).
 // Returns the number of batches drawn.
 uint64_t drawPaged(NodeCache& cache, const SampleTree& table, std::span<const uint32_t> nodes,
                    const Camera& camera, int threads, NativeRasterizer& raster,

@@ -128,10 +128,11 @@ uint64_t SampleTreeRenderer::cacheBudget() const { return uint64_t(st_.cacheMb *
 void SampleTreeRenderer::checkBudget() {
   const uint64_t budget = cacheBudget();
   uint64_t largest = 0;
-  for (const TreeNode& n : source_->table().nodes) largest = std::max(largest, payloadBytes(n));
+  for (const TreeNode& n : source_->table().nodes) largest = std::max(largest, cachedBytes(n));
   require(largest <= budget, "--cache-mb",
           "a node cache of " + std::to_string(budget) + " bytes cannot hold the largest node of " +
-              st_.treePath + " (" + std::to_string(largest) + " bytes of triangles; at least " +
+              st_.treePath + " (" + std::to_string(largest) +
+              " bytes of triangles and bookkeeping; at least " +
               std::to_string(std::ceil(double(largest) / 1048576.0 * 1e6) / 1e6) + " MiB)");
   setup_.setShared("cache_budget_bytes", double(budget));
   setup_.setShared("largest_node_bytes", double(largest));
