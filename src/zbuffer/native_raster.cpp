@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "src/core/range_pieces.hpp"
+#include "src/zbuffer/soup_prefilter.hpp"
 
 namespace lzb {
 
@@ -414,15 +415,24 @@ void NativeRasterizer::drawSoup(const Camera& camera, const TriangleSoup& soup, 
   const glm::dmat3 toView =
       glm::transpose(glm::dmat3(camera.right(), camera.up(), camera.forward()));
   const glm::dvec3 eye = camera.position();
+  const SoupPrefilter prefilter(eye, toView, geometry.s, fb.width, fb.height, geometry.nearDepth,
+                                kGuard);
   binChunks(first, 0, first.back(), geometry, threads, bins_, counts_,
             [&](Binner& binner, size_t r, size_t from, size_t to) {
-              for (size_t i = from; i < to; ++i) {
-                const uint64_t tri = soup.ranges[r].begin + i;
+              const auto setUp = [&](uint64_t tri) {
                 glm::dvec3 view[3];
                 for (int k = 0; k < 3; ++k)
                   view[k] = toView * (glm::dvec3(soup.positions[3 * tri + size_t(k)]) - eye);
                 binner.add(view, soup.ids[tri]);
-              }
+              };
+              const uint64_t begin = soup.ranges[r].begin;
+              size_t i = from;
+              // Eight at a time through the float pre-pass; only what it passes is set up exactly.
+              for (; i + 8 <= to; i += 8)
+                for (unsigned keep = prefilter.mayCover8(&soup.positions[3 * (begin + i)]); keep;
+                     keep &= keep - 1)
+                  setUp(begin + i + size_t(__builtin_ctz(keep)));
+              for (; i < to; ++i) setUp(begin + i);
             });
   counts_.fragments = rasterizeBins(threads, nullptr, geometry.farDepth, fb);
 }
