@@ -24,10 +24,13 @@ typedef int32_t V8i __attribute__((vector_size(32)));
    (LZB_VCLAMP(x) < __builtin_convertvector(                        \
                         __builtin_convertvector(LZB_VCLAMP(x), V8i), V8f)))
 
-// The view coordinates' rounding error is at most 15.5 u M, u = 2^-24, M = |eye| + |corner| (max
-// norms): the eye rounded (u M), the subtraction (u M), the rounded axes (3 u M) and the 3-term
-// dot product's own (9 u M), each on terms of at most M. This is 2x that.
-constexpr float kViewError = 1.0f / float(1 << 19);
+// The view coordinates' rounding error is at most 19 u D + u^2 |eye|, u = 2^-24, D = |corner -
+// eye| (max norms): the eye is split into a float and the float of its remainder, so the
+// subtractions cost 2 u D (not u |eye|: far from the origin that is what float cannot resolve),
+// the rounded axes 3 u D, the 3-term dot product 9 u D and its inputs' errors 3.5 * 2 u D. This
+// is 2x that, and 2^-40 |eye| for the remainder's rounding.
+constexpr float kViewError = 1.0f / float(1 << 18);
+constexpr double kEyeRemainderError = 1.0 / double(uint64_t(1) << 40);
 // Relative rounding of the divide and the screen mapping, with the same slack.
 constexpr float kScreenError = 1.0f / float(1 << 19);
 // The exact set-up's own slack (half a subpixel of snapping) and then some.
@@ -45,11 +48,13 @@ SoupPrefilter::SoupPrefilter(const glm::dvec3& eye, const glm::dmat3& rows, doub
       hiX_(float(width + guard)),
       loY_(float(-guard)),
       hiY_(float(height + guard)),
-      eyeMagnitude_(float(std::max({std::abs(eye.x), std::abs(eye.y), std::abs(eye.z)}))),
+      eyeError_(float(kEyeRemainderError *
+                      std::max({std::abs(eye.x), std::abs(eye.y), std::abs(eye.z)}))),
       width_(width),
       height_(height) {
   for (int k = 0; k < 3; ++k) {
     eye_[k] = float(eye[k]);
+    eyeRemainder_[k] = float(eye[k] - double(eye_[k]));
     for (int j = 0; j < 3; ++j) row_[k][j] = float(rows[j][k]);  // glm: rows[column][row]
   }
 }
@@ -58,7 +63,7 @@ __attribute__((target_clones("avx2", "default"))) unsigned SoupPrefilter::mayCov
     const glm::vec3* c) const {
   const V8f zero = {}, big = zero + 16777216.0f;
   V8f minX = zero + INFINITY, maxX = zero - INFINITY, minY = minX, maxY = maxX;
-  V8f minZ = zero + INFINITY, magnitude = zero + eyeMagnitude_, slope = zero;
+  V8f minZ = zero + INFINITY, magnitude = zero, slope = zero;
   for (int k = 0; k < 3; ++k) {
     V8f p[3];
     for (int a = 0; a < 3; ++a)
@@ -66,8 +71,8 @@ __attribute__((target_clones("avx2", "default"))) unsigned SoupPrefilter::mayCov
                  c[12 + k][a], c[15 + k][a], c[18 + k][a], c[21 + k][a]};
     V8f d[3], v[3];
     for (int a = 0; a < 3; ++a) {
-      d[a] = p[a] - eye_[a];
-      magnitude = LZB_VMAX(magnitude, LZB_VABS(p[a]) + eyeMagnitude_);
+      d[a] = (p[a] - eye_[a]) - eyeRemainder_[a];
+      magnitude = LZB_VMAX(magnitude, LZB_VABS(d[a]));
     }
     for (int r = 0; r < 3; ++r) v[r] = row_[r][0] * d[0] + row_[r][1] * d[1] + row_[r][2] * d[2];
     const V8f inverse = 1.0f / v[2], f = s_ * inverse;
@@ -77,7 +82,7 @@ __attribute__((target_clones("avx2", "default"))) unsigned SoupPrefilter::mayCov
     minZ = LZB_VMIN(minZ, v[2]);
     slope = LZB_VMAX(slope, (LZB_VABS(v[0]) + LZB_VABS(v[1])) * inverse);
   }
-  const V8f viewError = kViewError * magnitude;
+  const V8f viewError = kViewError * magnitude + eyeError_;
   const V8f margin = s_ * viewError * (1.0f + slope) / (minZ - viewError) +
                      kScreenError * (halfWidth_ + halfHeight_ + s_ * slope) + kSnapSlack;
   // Passed on: a corner near or behind the near plane, near the guard band, or not a number

@@ -3,9 +3,10 @@
 // cover a pixel centre. Most triangles a sample tree draws are smaller than a pixel and cover
 // none; the exact set-up (double precision, three divides a triangle) finds that one at a time.
 // This pass rejects only triangles the exact set-up would drop silently too: each screen bound is
-// widened by a margin above the float path's rounding error (bounded from the magnitudes of the
-// eye and the vertices), and a triangle with a vertex near or behind the near plane, or near the
-// guard band, is always passed on. So the image and the set-up counts stay the exact path's.
+// widened by a margin above the float path's rounding error (bounded from the corners' distances
+// to the eye, which is held as two floats), and a triangle with a vertex near or behind the near
+// plane, or near the guard band, is always passed on. So the image and the set-up counts stay the
+// exact path's.
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -22,8 +23,8 @@ struct SoupPrefilter {
   unsigned mayCover8(const glm::vec3* corners) const;
 
  private:
-  float eye_[3], row_[3][3];
-  float s_, halfWidth_, halfHeight_, near_, loX_, hiX_, loY_, hiY_, eyeMagnitude_;
+  float eye_[3], eyeRemainder_[3], row_[3][3];  // eye = eye_ + eyeRemainder_ (+ eyeError_)
+  float s_, halfWidth_, halfHeight_, near_, loX_, hiX_, loY_, hiY_, eyeError_;
   int width_, height_;
 };
 
