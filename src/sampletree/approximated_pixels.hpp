@@ -16,6 +16,6 @@ namespace lzb::sampletree {
 // its splat, counted once each.
 // splat: the splat size, 0 when stopped nodes draw their triangles instead.
 uint64_t approximatedPixels(const SampleTree& tree, const std::vector<uint32_t>& stops,
-                            const Camera& camera, int splat);
+                            const Camera& camera, int splat, int threads = 1);
 
 }  // namespace lzb::sampletree

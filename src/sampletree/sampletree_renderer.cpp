@@ -170,7 +170,8 @@ void SampleTreeRenderer::render(const Camera& camera, int frame, const WorkShare
   stats.addStage("shade", clock.lap());
   stats.setShared("approximated_pixels",
                   double(approximatedPixels(*f.tree, f.walk.stops, camera,
-                                            st_.stopDraw == StopDraw::kSplat ? st_.splat : 0)));
+                                            st_.stopDraw == StopDraw::kSplat ? st_.splat : 0,
+                                            options_.threads)));
   stats.addStage("approximated", clock.lap());
   report(f, stats);
   if (client_) {
