@@ -6,8 +6,9 @@ one CSV:
   none instanced) in memory and out of core (--mem-mb 256), triangles per second, the build's peak
   resident memory (the process's, from wait4) and whether the two stores are byte-identical.
   --scale adds the 10^8-triangle landscape (4,194,304 objects) built with --mem-mb 2048, then
-  rendered out of core (node caches of 512 and 256 MiB; the scene is not loaded), and raycast on
-  the same scene, each with its peak memory.
+  rendered out of core (node caches of 512 and 256 MiB, the default 5-frame circle; and a walk
+  of 16 frames 0.1 degree apart with caches of 512 and 1024 MiB; the scene is not loaded), and
+  raycast on the same scene, each with its peak memory.
 - path: an 800-frame circle over a landscape store read out of core (--cache-mb 16): per frame,
   nodes visited, loaded (the paper: at most ~100 per frame) and prefetched, bytes read, the wait
   for loads and the frame time (path.csv, one row per frame).
@@ -217,10 +218,15 @@ class Study:
         self.add({"part": "scale", "scene": scene, "config": "external_2048mb", "ranks": 1, **r},
                  shown(cmd))
         tree = ["--method", "sampletree", "--tree", store]
-        for config, args in (("sampletree_cache_512mb", [*tree, "--cache-mb", "512"]),
-                             ("sampletree_cache_256mb", [*tree, "--cache-mb", "256"]),
-                             ("raycast", ["--method", "raycast"])):
-            cmd = [common.LZB, "render", scene, *args, "--frames", "5", "--width", str(W),
+        # The default circle's 5 frames lie 72 degrees apart; the walk is 16 frames of a
+        # 3600-frame circle (0.1 degree, ~11 units apart): a camera moving, the cache coherent.
+        five, walk = ["--frames", "5"], ["--frames", "3600", "--frame-range", "0:16"]
+        for config, args in (("sampletree_cache_512mb", [*tree, "--cache-mb", "512", *five]),
+                             ("sampletree_cache_256mb", [*tree, "--cache-mb", "256", *five]),
+                             ("walk_cache_512mb", [*tree, "--cache-mb", "512", *walk]),
+                             ("walk_cache_1024mb", [*tree, "--cache-mb", "1024", *walk]),
+                             ("raycast", ["--method", "raycast", *five])):
+            cmd = [common.LZB, "render", scene, *args, "--width", str(W),
                    "--height", str(H), "--threads", str(common.CORES), "--quiet", "--out",
                    os.path.join(SCRATCH, "lzb-st-scale-out")]
             seconds, rss, _ = timed(cmd)

@@ -4,12 +4,12 @@
 // external_build.hpp), and writes it as a tree store (src/sampletree/tree_store.hpp) for
 // `lzb render --method sampletree --tree PATH`. Bad input (scene, options, too many triangles)
 // writes nothing.
+#include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
 
-#include <CLI/CLI.hpp>
-
 #include "mpi/group.hpp"
+#include "src/sampletree/sample_tree.hpp"
 
 namespace lzb {
 
@@ -17,7 +17,7 @@ struct BuildTreeArgs {
   std::string scene, out;
   double c = 13.8;
   uint64_t seed = 1;
-  uint32_t leafTriangles = 32;
+  uint32_t leafTriangles = sampletree::kDefaultLeafTriangles;
   int threads = 0;
   double memMb = 0.0;  // > 0: out of core within this budget
   bool quiet = false;

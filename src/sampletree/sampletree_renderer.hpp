@@ -32,7 +32,7 @@ struct SampleTreeOptions {
   std::string treePath;  // empty: build the tree in memory from the scene
   double c = 13.8;
   int splat = 1;  // stop at cells of at most splat^2 pixels, drawn as splat x splat splats
-  uint32_t leafTriangles = 32;
+  uint32_t leafTriangles = kDefaultLeafTriangles;
   StopDraw stopDraw = StopDraw::kSplat;  // what a stopped node draws
   double cacheMb = 0.0;  // with treePath: > 0 renders out of core with a node cache this big
   int cacheLevels = 1;   // out of core: levels below the stops prefetched (0: none)
