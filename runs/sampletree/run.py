@@ -7,7 +7,7 @@ one CSV:
   resident memory (the process's, from wait4) and whether the two stores are byte-identical.
   --scale adds the 10^8-triangle landscape (4,194,304 objects) built with --mem-mb 2048, then
   rendered out of core (node caches of 512 and 256 MiB, the default 5-frame circle; and a walk
-  of 16 frames 0.1 degree apart with caches of 512 and 1024 MiB; the scene is not loaded), and
+  of 16 frames 0.1 degree apart with caches of 512 and 1,400 MiB; the scene is not loaded), and
   raycast on the same scene, each with its peak memory.
 - path: an 800-frame circle over a landscape store read out of core (--cache-mb 16): per frame,
   nodes visited, loaded (the paper: at most ~100 per frame) and prefetched, bytes read, the wait
@@ -224,7 +224,7 @@ class Study:
         for config, args in (("sampletree_cache_512mb", [*tree, "--cache-mb", "512", *five]),
                              ("sampletree_cache_256mb", [*tree, "--cache-mb", "256", *five]),
                              ("walk_cache_512mb", [*tree, "--cache-mb", "512", *walk]),
-                             ("walk_cache_1024mb", [*tree, "--cache-mb", "1024", *walk]),
+                             ("walk_cache_1400mb", [*tree, "--cache-mb", "1400", *walk]),
                              ("raycast", ["--method", "raycast", *five])):
             cmd = [common.LZB, "render", scene, *args, "--width", str(W),
                    "--height", str(H), "--threads", str(common.CORES), "--quiet", "--out",
@@ -282,6 +282,7 @@ unset logscale y
 set ylabel 'correct pixels, covered (%)'
 plot {splat_lines(3)}
 set xlabel 'frame time (ms), 10^7 landscape in core; trees of c in (13.8, 4), leaf size in (8, 32, 128)'
+set xrange [0:*]
 {"set arrow from %g, graph 0 to %g, graph 1 nohead dt 2 lw 2" % (trade_peer[0], trade_peer[0]) if trade_peer else ""}
 plot '{data}' index {first_trade} using 1:2 with points pt 7 title 'splat 1', '' index {first_trade + 1} using 1:2 with points pt 5 title 'splat 2 (dashed: raycast)'
 unset multiplot
