@@ -67,7 +67,7 @@ SceneInput openSceneStream(const std::string& spec, bool quiet) {
 // The budget left to the build once the input holds what it must while open (a PLY's vertex
 // element, a scene loaded whole): --mem-mb bounds the whole process, not the build alone.
 uint64_t buildBudget(const SceneInput& in, uint64_t memBytes, const std::string& spec) {
-  const uint64_t held = in.chunked ? in.chunked->heldBytes : in.scene->meshBytes();
+  const uint64_t held = in.chunked ? in.chunked->heldBytes : in.scene->heldBytes();
   require(held < memBytes, "--mem-mb",
           spec + " holds " + std::to_string(held >> 20) + " MiB while it is read (" +
               (in.chunked ? "its vertices" : "the scene, loaded whole") + "), all of the " +

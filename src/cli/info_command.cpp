@@ -33,16 +33,6 @@ void addInfoOptions(CLI::App& c, InfoArgs& a) {
 
 namespace {
 
-// Bytes the scene model holds: per triangle 3 positions, a normal and a colour; per instance a
-// transform and an offset.
-uint64_t sceneBytes(const Scene& scene) {
-  uint64_t bytes = 0;
-  for (const Node& n : scene.nodes)
-    bytes += n.mesh.positions.size() * sizeof(glm::vec3) + n.mesh.normals.size() * sizeof(glm::vec3) +
-             n.mesh.colors.size() * sizeof(Rgba8) + n.instances.size() * (sizeof(Instance) + 8);
-  return bytes;
-}
-
 void printEstimate(const nlohmann::json& e) {
   const auto& ranks = e["ranks"];
   std::printf(
@@ -116,7 +106,10 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   info["instances"] = 0;
   for (const Node& n : scene.nodes) info["instances"] = info["instances"].get<uint64_t>() + n.instances.size();
   info["octrees"] = octrees;
-  info["memory"] = {{"scene_bytes", sceneBytes(scene)},
+  const uint64_t held = scene.heldBytes();
+  info["memory"] = {{"scene_bytes", held},
+                    {"scene_bytes_per_triangle",
+                     double(held) / double(std::max<uint64_t>(scene.uniqueTriangles(), 1))},
                     {"octree_bytes", octreeBytes},
                     {"peak_resident_bytes", peakMemoryBytes()}};
   info["seconds"] = {{"load", loadSeconds}, {"octrees", octreeSeconds}};
@@ -148,8 +141,11 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   }
   if (octrees.size() > kListed)
     std::printf("  ... and %zu more octrees (--json lists them all)\n", octrees.size() - kListed);
-  std::printf("memory:     scene %.1f MB, octrees %.1f MB, peak resident %.1f MB\n",
-              double(sceneBytes(scene)) / 1e6, double(octreeBytes) / 1e6, double(peakMemoryBytes()) / 1e6);
+  std::printf(
+      "memory:     scene %.1f MB (%.1f bytes a unique triangle), octrees %.1f MB, peak "
+      "resident %.1f MB\n",
+      double(held) / 1e6, info["memory"]["scene_bytes_per_triangle"].get<double>(),
+      double(octreeBytes) / 1e6, double(peakMemoryBytes()) / 1e6);
   printEstimate(info["estimate"]);
   return 0;
 }

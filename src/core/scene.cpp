@@ -115,13 +115,15 @@ uint64_t Scene::uniqueTriangles() const {
   return total;
 }
 
-uint64_t Scene::meshBytes() const {
+uint64_t Scene::heldBytes() const {
   uint64_t total = 0;
   for (const Node& node : nodes)
     total += node.mesh.positions.capacity() * sizeof(glm::vec3) +
              node.mesh.normals.capacity() * sizeof(glm::vec3) +
              node.mesh.colors.capacity() * sizeof(Rgba8) +
              node.instances.capacity() * sizeof(Instance);
+  for (const std::vector<uint64_t>& offsets : instanceOffsets)
+    total += offsets.capacity() * sizeof(uint64_t);
   return total;
 }
 

@@ -108,7 +108,9 @@ struct Scene {
 
   const Node& rootNode() const { return nodes[root]; }
   uint64_t uniqueTriangles() const;                 // stored once each
-  uint64_t meshBytes() const;                       // what the nodes' meshes hold
+  // What the model holds: the meshes' arrays (3 positions, a normal and a colour a triangle) and
+  // the instances with their ID offsets, as allocated.
+  uint64_t heldBytes() const;
   uint64_t expandedTriangles() const { return expandedCount[root]; }
   const Bounds& bounds() const { return nodeBounds[root]; }
   // Offset of instance i's expanded list inside node n's expanded list.
