@@ -69,10 +69,6 @@ bool overlap(const TileRect& a, const TileRect& b) {
   return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
 }
 
-}  // namespace
-
-namespace {
-
 // share's tiles under the projection of what embree holds.
 std::vector<int> tilesToCast(const EmbreeScene& embree, const Camera& camera,
                              const WorkShare& share, const ScreenTiles& tiles) {

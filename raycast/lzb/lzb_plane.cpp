@@ -7,9 +7,13 @@
 
 namespace lzb::localz {
 
+std::pair<int, int> PartitionPlane::coarseGrid(const Camera& camera, int grid) {
+  return {std::clamp(grid, 1, camera.width()), std::clamp(grid, 1, camera.height())};
+}
+
 std::vector<double> PartitionPlane::coarseRayDepths(const EmbreeScene& embree, const Camera& camera,
                                                     int grid, int threads) {
-  const int gx = std::clamp(grid, 1, camera.width()), gy = std::clamp(grid, 1, camera.height());
+  const auto [gx, gy] = coarseGrid(camera, grid);
   std::vector<Ray> rays;
   rays.reserve(size_t(gx) * size_t(gy));
   for (int j = 0; j < gy; ++j)

@@ -25,6 +25,7 @@
 //   Every input is the same on every rank (each rank renders every frame's near pass).
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "raycast/exact/embree_scene.hpp"
@@ -82,6 +83,8 @@ class PartitionPlane {
   // After the near pass: how many pixels it left unfinished (feeds reuse rule 5).
   void observe(uint64_t unfinished);
 
+  // The coarse grid's columns and rows for this camera: `grid` each way, at most a ray a pixel.
+  static std::pair<int, int> coarseGrid(const Camera& camera, int grid);
   // The coarse grid's nearest hit depth per ray, row by row (infinity: no hit).
   static std::vector<double> coarseRayDepths(const EmbreeScene& embree, const Camera& camera,
                                              int grid, int threads = 1);

@@ -107,9 +107,10 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   for (const Node& n : scene.nodes) info["instances"] = info["instances"].get<uint64_t>() + n.instances.size();
   info["octrees"] = octrees;
   const uint64_t held = scene.heldBytes();
+  const double heldPerTriangle =
+      double(held) / double(std::max<uint64_t>(scene.uniqueTriangles(), 1));
   info["memory"] = {{"scene_bytes", held},
-                    {"scene_bytes_per_triangle",
-                     double(held) / double(std::max<uint64_t>(scene.uniqueTriangles(), 1))},
+                    {"scene_bytes_per_triangle", heldPerTriangle},
                     {"octree_bytes", octreeBytes},
                     {"peak_resident_bytes", peakMemoryBytes()}};
   info["seconds"] = {{"load", loadSeconds}, {"octrees", octreeSeconds}};
@@ -144,8 +145,8 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   std::printf(
       "memory:     scene %.1f MB (%.1f bytes a unique triangle), octrees %.1f MB, peak "
       "resident %.1f MB\n",
-      double(held) / 1e6, info["memory"]["scene_bytes_per_triangle"].get<double>(),
-      double(octreeBytes) / 1e6, double(peakMemoryBytes()) / 1e6);
+      double(held) / 1e6, heldPerTriangle, double(octreeBytes) / 1e6,
+      double(peakMemoryBytes()) / 1e6);
   printEstimate(info["estimate"]);
   return 0;
 }

@@ -173,8 +173,8 @@ void HybridRenderer::render(const Camera& camera, int frame, const WorkShare& sh
 
 size_t HybridRenderer::probeRays(const Camera& camera) const {
   if (params_.frameWay != FrameWay::kAuto) return 0;
-  const int grid = lzb_.options().planeGrid;
-  return size_t(std::clamp(grid, 1, camera.width())) * size_t(std::clamp(grid, 1, camera.height()));
+  const auto [gx, gy] = localz::PartitionPlane::coarseGrid(camera, lzb_.options().planeGrid);
+  return size_t(gx) * size_t(gy);
 }
 
 std::span<const double> HybridRenderer::coarseRayDepths(const Camera& camera) {
