@@ -44,7 +44,7 @@ void expectSamePart(const ScenePart& streamed, const ScenePart& cut) {
     EXPECT_EQ(s.nodeBounds[a->node].hi, c.nodeBounds[b->node].hi) << id;
     const Mesh &ma = s.nodes[a->node].mesh, &mb = c.nodes[b->node].mesh;
     for (int k = 0; k < 3; ++k) EXPECT_EQ(ma.vertex(a->triangle, k), mb.vertex(b->triangle, k));
-    EXPECT_EQ(ma.normals[a->triangle], mb.normals[b->triangle]);
+    EXPECT_EQ(ma.normal(a->triangle), mb.normal(b->triangle));
     EXPECT_EQ(ma.colors[a->triangle], mb.colors[b->triangle]);
   }
 }

@@ -65,7 +65,7 @@ TEST(Procedural, SpherePolesAndOutwardNormals) {
   for (size_t t = 0; t < mesh.size(); ++t) {
     const glm::dvec3 centre =
         (glm::dvec3(mesh.vertex(t, 0)) + glm::dvec3(mesh.vertex(t, 1)) + glm::dvec3(mesh.vertex(t, 2))) / 3.0;
-    EXPECT_GT(glm::dot(glm::dvec3(mesh.normals[t]), centre), 0.0) << t;
+    EXPECT_GT(glm::dot(glm::dvec3(mesh.normal(t)), centre), 0.0) << t;
   }
 }
 

@@ -12,23 +12,30 @@ namespace {
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+// The cross product and its length in double: the degeneracy test and the normal agree.
+glm::dvec3 doubleCross(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  return glm::cross(glm::dvec3(b) - glm::dvec3(a), glm::dvec3(c) - glm::dvec3(a));
+}
+
 }  // namespace
+
+glm::vec3 triangleNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  const glm::dvec3 n = doubleCross(a, b, c);
+  const double len = glm::length(n);
+  return len > 0.0 && std::isfinite(len) ? glm::vec3(n / len) : glm::vec3(0.0f);
+}
 
 bool Mesh::add(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, Rgba8 color) {
   if (!finite(a) || !finite(b) || !finite(c)) return false;
-  // Double precision so triangles at 1e-20 scale do not underflow to a zero normal.
-  glm::dvec3 n = glm::cross(glm::dvec3(b) - glm::dvec3(a), glm::dvec3(c) - glm::dvec3(a));
-  double len = glm::length(n);
+  const double len = glm::length(doubleCross(a, b, c));
   if (!(len > 0.0) || !std::isfinite(len)) return false;
   positions.insert(positions.end(), {a, b, c});
-  normals.push_back(glm::vec3(n / len));
   colors.push_back(color);
   return true;
 }
 
 void Mesh::append(const Mesh& other) {
   positions.insert(positions.end(), other.positions.begin(), other.positions.end());
-  normals.insert(normals.end(), other.normals.begin(), other.normals.end());
   colors.insert(colors.end(), other.colors.begin(), other.colors.end());
 }
 
@@ -119,7 +126,6 @@ uint64_t Scene::heldBytes() const {
   uint64_t total = 0;
   for (const Node& node : nodes)
     total += node.mesh.positions.capacity() * sizeof(glm::vec3) +
-             node.mesh.normals.capacity() * sizeof(glm::vec3) +
              node.mesh.colors.capacity() * sizeof(Rgba8) +
              node.instances.capacity() * sizeof(Instance);
   for (const std::vector<uint64_t>& offsets : instanceOffsets)

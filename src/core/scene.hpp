@@ -1,7 +1,8 @@
 #pragma once
 // The scene model: what a scene requires and nothing more.
 //
-// A Node owns triangles (position, one colour, one normal each) and references other nodes
+// A Node owns triangles (positions and one colour each; the normal is derived from the positions)
+// and references other nodes
 // through Instances (node index + affine transform, never a copy). The graph is a DAG rooted at
 // Scene::root. Mesh positions are float in the node's own frame; transforms are double, so a
 // mesh far from the origin is stored recentred and placed by a double-precision translation.
@@ -34,14 +35,21 @@ constexpr int kMaxInstanceDepth = 64;
 // kNoId stays free. finalize() refuses more.
 constexpr uint64_t kMaxExpandedTriangles = uint64_t(1) << 62;
 
+// The unit geometric normal of a triangle, normalize(cross(b - a, c - a)) worked out in double (so
+// triangles at 1e-20 scale keep one) and rounded to float: the one definition every method shades
+// and culls with, derived on use rather than stored.
+glm::vec3 triangleNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
+
 struct Mesh {
   std::vector<glm::vec3> positions;  // 3 per triangle, node frame
-  std::vector<glm::vec3> normals;    // 1 per triangle: unit geometric normal, cross(v1-v0, v2-v0)
   std::vector<Rgba8> colors;         // 1 per triangle
 
   size_t size() const { return colors.size(); }
   bool empty() const { return colors.empty(); }
   const glm::vec3& vertex(size_t tri, int corner) const { return positions[3 * tri + corner]; }
+  glm::vec3 normal(size_t tri) const {
+    return triangleNormal(vertex(tri, 0), vertex(tri, 1), vertex(tri, 2));
+  }
   // Appends a triangle; returns false (and adds nothing) when it is degenerate or not finite.
   bool add(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, Rgba8 color);
   void append(const Mesh& other);

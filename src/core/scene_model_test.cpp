@@ -33,7 +33,7 @@ TEST(Mesh, DropsDegenerateAndNonFiniteTriangles) {
   // Tiny but valid: the normal is computed in double, so it does not underflow.
   EXPECT_TRUE(m.add({0, 0, 0}, {1e-25f, 0, 0}, {0, 1e-25f, 0}, 0));
   EXPECT_EQ(m.size(), 2u);
-  EXPECT_NEAR(m.normals[1].z, 1.0f, 1e-6f);
+  EXPECT_NEAR(m.normal(1).z, 1.0f, 1e-6f);
 }
 
 // Root: 2 own triangles, instance of A (2 triangles) twice, instance of B which holds A thrice.

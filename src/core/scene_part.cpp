@@ -142,7 +142,6 @@ void reserveKept(const PartOf& partOf, uint64_t count, uint32_t meshNode,
   for (size_t p = 0; p < parts.size(); ++p) {
     Mesh& to = parts[p].scene.nodes[meshNode].mesh;
     to.positions.reserve(to.positions.size() + 3 * kept[p]);
-    to.normals.reserve(to.normals.size() + kept[p]);
     to.colors.reserve(to.colors.size() + kept[p]);
   }
 }
@@ -156,7 +155,6 @@ void keepMainMeshTriangles(const Mesh& from, uint64_t firstId, const PartOf& par
     Mesh& to = part.scene.nodes[meshNode].mesh;
     to.positions.insert(to.positions.end(), from.positions.begin() + ptrdiff_t(3 * t),
                         from.positions.begin() + ptrdiff_t(3 * t + 3));
-    to.normals.push_back(from.normals[t]);
     to.colors.push_back(from.colors[t]);
     part.ids.add(id, 1);
     ++part.units;

@@ -24,7 +24,7 @@ struct Placement {
 
 Rgba8 shadePlaced(const Scene& scene, const Placement& p, uint32_t triangle, const glm::dvec3& eye) {
   const Mesh& mesh = scene.nodes[p.node].mesh;
-  const glm::dvec3 n = glm::normalize(p.normalMatrix * glm::dvec3(mesh.normals[triangle]));
+  const glm::dvec3 n = glm::normalize(p.normalMatrix * glm::dvec3(mesh.normal(triangle)));
   const glm::dvec3 v0 =
       glm::dvec3(p.transform * glm::dvec4(glm::dvec3(mesh.vertex(triangle, 0)), 1.0));
   const bool facing = glm::dot(n, eye - v0) >= 0.0;

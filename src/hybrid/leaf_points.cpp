@@ -74,7 +74,7 @@ void splatPoint(const Mesh& mesh, uint32_t t, uint32_t wa, uint32_t wc, const Af
   foldUnitSquare(a, c);
   const glm::vec3& v0 = mesh.vertex(t, 0);
   const glm::vec3 p = v0 + a * (mesh.vertex(t, 1) - v0) + c * (mesh.vertex(t, 2) - v0);
-  if (dropBackfaces && glm::dot(glm::dvec3(mesh.normals[t]), eyeLocal - glm::dvec3(p)) < 0.0) {
+  if (dropBackfaces && glm::dot(glm::dvec3(mesh.normal(t)), eyeLocal - glm::dvec3(p)) < 0.0) {
     ++back;
     return;
   }

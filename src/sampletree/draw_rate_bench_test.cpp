@@ -53,7 +53,6 @@ TEST(SampleTreeBench, SoupDrawAgainstTheNativeZBufferOnTheSameTriangles) {
     mesh.positions.insert(mesh.positions.end(), tree.positions.begin() + long(3 * r.begin),
                           tree.positions.begin() + long(3 * r.end));
   const size_t n = mesh.positions.size() / 3;
-  mesh.normals.assign(n, glm::vec3(0, 1, 0));
   mesh.colors.assign(n, Rgba8{});
   same.finalize();
   DrawLists lists;

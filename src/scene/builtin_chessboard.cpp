@@ -19,7 +19,6 @@ constexpr Rgba8 kLight = packRgba8(225, 222, 210);
 void addSquares(Mesh& mesh, LoadStats& stats, int64_t m, double s) {
   MeshBuilder builder(mesh, stats);
   mesh.positions.reserve(size_t(6 * m * m));
-  mesh.normals.reserve(size_t(2 * m * m));
   mesh.colors.reserve(size_t(2 * m * m));
   const double half = 0.5 * double(m) * s;
   for (int64_t j = 0; j < m; ++j)

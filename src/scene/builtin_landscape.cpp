@@ -113,7 +113,6 @@ Generated generateLandscape(Scene& scene, BuiltinParams& params) {
   out.root = scene.addNode("landscape");
   Mesh& mesh = scene.nodes[out.root].mesh;
   mesh.positions.reserve(3 * land.triangles());
-  mesh.normals.reserve(land.triangles());
   mesh.colors.reserve(land.triangles());
   MeshBuilder builder(mesh, scene.stats);
   addTerrain(builder, land.terrain);

@@ -98,7 +98,7 @@ TEST(Chessboard, FlatCountsAndLayout) {
   EXPECT_NE(m.colors[0], m.colors[2]);
   EXPECT_EQ(m.colors[0], m.colors[1]);
   EXPECT_EQ(m.colors[0], m.colors[4]);
-  for (const glm::vec3& n : m.normals) EXPECT_FLOAT_EQ(n.y, 1.0f);
+  for (size_t t = 0; t < m.size(); ++t) EXPECT_FLOAT_EQ(m.normal(t).y, 1.0f);
 }
 
 TEST(Chessboard, NestedEqualsFlat) {
@@ -172,9 +172,9 @@ TEST(Sphereflake, ChildrenTouchTheParentAndNotEachOther) {
   const Mesh& sphere = s.nodes[level1->instances[0].node].mesh;
   ASSERT_EQ(sphere.size(), 200u);
   for (size_t t = 0; t < sphere.size(); ++t)
-    EXPECT_GT(glm::dot(sphere.normals[t],
-                       sphere.vertex(t, 0) + sphere.vertex(t, 1) + sphere.vertex(t, 2)),
-              0.0f);
+    EXPECT_GT(
+        glm::dot(sphere.normal(t), sphere.vertex(t, 0) + sphere.vertex(t, 1) + sphere.vertex(t, 2)),
+        0.0f);
 }
 
 // ---- city ----

@@ -65,7 +65,7 @@ TEST(MeshFile, PolygonsAreTriangulated) {
   double area = 0.0;
   const Mesh& m = s.rootNode().mesh;
   for (size_t t = 0; t < m.size(); ++t) {
-    EXPECT_FLOAT_EQ(m.normals[t].z, 1.0f);  // winding kept
+    EXPECT_FLOAT_EQ(m.normal(t).z, 1.0f);  // winding kept
     area += 0.5 * glm::length(glm::cross(glm::dvec3(m.vertex(t, 1) - m.vertex(t, 0)),
                                          glm::dvec3(m.vertex(t, 2) - m.vertex(t, 0))));
   }

@@ -309,7 +309,7 @@ class CellMerger {
   }
 
   bool similar(const Candidate& c, const Candidate& rep) const {
-    return glm::dot(mesh_.normals[c.triangle], mesh_.normals[rep.triangle]) >= cosSplit_ &&
+    return glm::dot(mesh_.normal(c.triangle), mesh_.normal(rep.triangle)) >= cosSplit_ &&
            coloursClose(mesh_.colors[c.triangle], mesh_.colors[rep.triangle]);
   }
 
@@ -318,13 +318,13 @@ class CellMerger {
     glm::dvec3 n(0.0), colour(0.0);
     double w = 0.0;
     for (const Candidate* c : members) {
-      n += double(c->weight) * glm::dvec3(mesh_.normals[c->triangle]);
+      n += double(c->weight) * glm::dvec3(mesh_.normal(c->triangle));
       colour += double(c->weight) * rgb(mesh_.colors[c->triangle]);
       w += double(c->weight);
     }
     // Opposite normals cancel (a sheet seen from both sides, merged by --collisions average):
     // the representative's normal then stands for the cell.
-    if (!(glm::length(n) > 1e-6 * w)) n = glm::dvec3(mesh_.normals[rep.triangle]);
+    if (!(glm::length(n) > 1e-6 * w)) n = glm::dvec3(mesh_.normal(rep.triangle));
     Surfel s;
     const uint32_t per = layout_.lattice() / uint32_t(grid_);  // lattice steps per cell
     const uint64_t g = uint64_t(grid_);
