@@ -84,14 +84,15 @@ def wait_quiet(limit_s=600):
     return False
 
 
-def render(scene, args, ranks=1, threads=1, quiet_wait=True, keep=None):
+def render(scene, args, ranks=1, threads=1, quiet_wait=True, keep=None, lzb=None):
     """Runs lzb render (under mpirun for ranks > 1); returns (shown command, report). keep: a
-    folder for the frames, left in place (else a temporary one, removed)."""
+    folder for the frames, left in place (else a temporary one, removed). lzb: another binary
+    (an earlier build, for before/after rows in one run)."""
     if quiet_wait:
         wait_quiet()
     out = keep or tempfile.mkdtemp(prefix="lzb-run-")
     try:
-        cmd = [LZB, "render", scene, *args, "--threads", str(threads), "--quiet", "--out", out]
+        cmd = [lzb or LZB, "render", scene, *args, "--threads", str(threads), "--quiet", "--out", out]
         if ranks > 1:
             cmd = [*MPIRUN, "-n", str(ranks), *cmd]
         subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, env=ENV)

@@ -81,22 +81,22 @@ struct EmbreeScene::Impl {
   }
 
   void attachMesh(Level& level, const Mesh& mesh, const glm::dvec3& s, const std::string& name) {
-    // Embree numbers primitives with 32 bits; 3 vertices per triangle must fit too.
+    // Embree numbers primitives with 32 bits.
     if (mesh.size() > (size_t(1) << 30))
       throw std::runtime_error("Embree: node '" + name + "' holds more than 2^30 triangles");
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    // Embree's own buffers (padded for its SIMD loads), filled with recentred positions.
+    // The vertices recentred into Embree's own (padded) buffer; the model's indices shared as
+    // they are (the scene outlives this object).
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
         g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.positions.size()));
-    auto* index = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-        g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.size()));
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(),
+                               0, 3 * sizeof(uint32_t), mesh.size());
     check("allocating the triangles of node '" + name + "'");
     const long n = long(mesh.positions.size());
 #pragma omp parallel for schedule(static) num_threads(options.threads)
     for (long i = 0; i < n; ++i) {
       const glm::dvec3 p = glm::dvec3(mesh.positions[size_t(i)]) - s;
       v[3 * i] = float(p.x), v[3 * i + 1] = float(p.y), v[3 * i + 2] = float(p.z);
-      index[i] = unsigned(i);
     }
     rtcSetGeometryBuildQuality(g, quality());
     rtcCommitGeometry(g);

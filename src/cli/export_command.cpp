@@ -1,5 +1,6 @@
 #include "src/cli/export_command.hpp"
 
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 #include <vector>
@@ -23,9 +24,14 @@ struct PlyFace {
 void writePly(const Scene& scene, const std::filesystem::path& path) {
   const std::vector<DrawItem> items = flattenScene(scene);
   const uint64_t triangles = scene.expandedTriangles();
+  uint64_t vertices = 0;  // each placed mesh's shared vertices, once
+  for (const DrawItem& item : items) vertices += scene.nodes[item.node].mesh.positions.size();
+  require(vertices <= uint64_t(INT32_MAX), path.string(),
+          "more than 2^31 - 1 vertices: a PLY face indexes them with int");
   std::ofstream out(path, std::ios::binary);
   out << "ply\nformat binary_little_endian 1.0\ncomment lzb export of " << scene.source
-      << "\nelement vertex " << 3 * triangles << "\nproperty float x\nproperty float y\nproperty float z\n"
+      << "\nelement vertex " << vertices
+      << "\nproperty float x\nproperty float y\nproperty float z\n"
       << "element face " << triangles
       << "\nproperty list uchar int vertex_indices\nproperty uchar red\nproperty uchar green\n"
          "property uchar blue\nend_header\n";
@@ -36,15 +42,16 @@ void writePly(const Scene& scene, const std::filesystem::path& path) {
       out.write(reinterpret_cast<const char*>(&w), sizeof(w));
     }
   }
-  int32_t next = 0;
+  int32_t base = 0;
   for (const DrawItem& item : items) {
     const Mesh& mesh = scene.nodes[item.node].mesh;
-    for (size_t t = 0; t < mesh.size(); ++t, next += 3) {
+    for (size_t t = 0; t < mesh.size(); ++t) {
       PlyFace f;
-      f.index[0] = next, f.index[1] = next + 1, f.index[2] = next + 2;
+      for (int k = 0; k < 3; ++k) f.index[k] = base + int32_t(mesh.indices[3 * t + size_t(k)]);
       for (int k = 0; k < 3; ++k) f.rgb[k] = channel(mesh.colors[t], k);
       out.write(reinterpret_cast<const char*>(&f), sizeof(f));
     }
+    base += int32_t(mesh.positions.size());
   }
   require(bool(out), path.string(), "write failed");
 }

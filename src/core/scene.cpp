@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <stdexcept>
 
 #include "src/core/error.hpp"
 
@@ -12,30 +13,40 @@ namespace {
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-// The cross product and its length in double: the degeneracy test and the normal agree.
-glm::dvec3 doubleCross(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-  return glm::cross(glm::dvec3(b) - glm::dvec3(a), glm::dvec3(c) - glm::dvec3(a));
-}
-
 }  // namespace
 
-glm::vec3 triangleNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
-  const glm::dvec3 n = doubleCross(a, b, c);
-  const double len = glm::length(n);
-  return len > 0.0 && std::isfinite(len) ? glm::vec3(n / len) : glm::vec3(0.0f);
+bool keepsTriangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  return finite(a) && finite(b) && finite(c) && triangleNormal(a, b, c) != glm::vec3(0.0f);
+}
+
+uint32_t Mesh::addVertex(const glm::vec3& p) {
+  if (positions.size() >= size_t(UINT32_MAX))
+    throw std::length_error("a mesh holds at most 2^32 - 1 vertices");
+  positions.push_back(p);
+  return uint32_t(positions.size() - 1);
 }
 
 bool Mesh::add(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, Rgba8 color) {
-  if (!finite(a) || !finite(b) || !finite(c)) return false;
-  const double len = glm::length(doubleCross(a, b, c));
-  if (!(len > 0.0) || !std::isfinite(len)) return false;
-  positions.insert(positions.end(), {a, b, c});
+  if (!keepsTriangle(a, b, c)) return false;
+  const uint32_t i = addVertex(a), j = addVertex(b), k = addVertex(c);
+  indices.insert(indices.end(), {i, j, k});
+  colors.push_back(color);
+  return true;
+}
+
+bool Mesh::addTriangle(uint32_t i, uint32_t j, uint32_t k, Rgba8 color) {
+  if (!keepsTriangle(positions[i], positions[j], positions[k])) return false;
+  indices.insert(indices.end(), {i, j, k});
   colors.push_back(color);
   return true;
 }
 
 void Mesh::append(const Mesh& other) {
+  if (positions.size() + other.positions.size() > size_t(UINT32_MAX))
+    throw std::length_error("a mesh holds at most 2^32 - 1 vertices");
+  const uint32_t base = uint32_t(positions.size());
   positions.insert(positions.end(), other.positions.begin(), other.positions.end());
+  for (const uint32_t i : other.indices) indices.push_back(base + i);
   colors.insert(colors.end(), other.colors.begin(), other.colors.end());
 }
 
@@ -126,6 +137,7 @@ uint64_t Scene::heldBytes() const {
   uint64_t total = 0;
   for (const Node& node : nodes)
     total += node.mesh.positions.capacity() * sizeof(glm::vec3) +
+             node.mesh.indices.capacity() * sizeof(uint32_t) +
              node.mesh.colors.capacity() * sizeof(Rgba8) +
              node.instances.capacity() * sizeof(Instance);
   for (const std::vector<uint64_t>& offsets : instanceOffsets)

@@ -13,11 +13,11 @@
 //   childOffset(root, i1) + childOffset(node1, i2) + ... + t.
 // kNoId marks a pixel that shows no triangle.
 #include <cstdint>
+#include <glm/glm.hpp>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "src/core/bounds.hpp"
 #include "src/core/color.hpp"
@@ -38,20 +38,39 @@ constexpr uint64_t kMaxExpandedTriangles = uint64_t(1) << 62;
 // The unit geometric normal of a triangle, normalize(cross(b - a, c - a)) worked out in double (so
 // triangles at 1e-20 scale keep one) and rounded to float: the one definition every method shades
 // and culls with, derived on use rather than stored.
-glm::vec3 triangleNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
+// Inline: shading derives one for every pixel.
+inline glm::vec3 triangleNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  const glm::dvec3 n = glm::cross(glm::dvec3(b) - glm::dvec3(a), glm::dvec3(c) - glm::dvec3(a));
+  const double len = glm::length(n);
+  return len > 0.0 && len <= std::numeric_limits<double>::max() ? glm::vec3(n / len)
+                                                                : glm::vec3(0.0f);
+}
+// Whether the model keeps the triangle: finite corners and a non-zero normal.
+bool keepsTriangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
 
+// Indexed triangles: vertices stored once and shared (a heightfield holds half a vertex a
+// triangle), three indices and one colour a triangle. Every vertex is used by some triangle, so
+// the vertices' box is the triangles' box.
 struct Mesh {
-  std::vector<glm::vec3> positions;  // 3 per triangle, node frame
+  std::vector<glm::vec3> positions;  // vertices, node frame
+  std::vector<uint32_t> indices;     // 3 per triangle, into positions
   std::vector<Rgba8> colors;         // 1 per triangle
 
   size_t size() const { return colors.size(); }
   bool empty() const { return colors.empty(); }
-  const glm::vec3& vertex(size_t tri, int corner) const { return positions[3 * tri + corner]; }
+  const glm::vec3& vertex(size_t tri, int corner) const {
+    return positions[indices[3 * tri + size_t(corner)]];
+  }
   glm::vec3 normal(size_t tri) const {
     return triangleNormal(vertex(tri, 0), vertex(tri, 1), vertex(tri, 2));
   }
-  // Appends a triangle; returns false (and adds nothing) when it is degenerate or not finite.
+  // Appends a triangle with three new vertices; returns false (and adds nothing) when the model
+  // does not keep it (keepsTriangle).
   bool add(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, Rgba8 color);
+  // Appends a vertex and returns its index (throws std::length_error past 2^32 vertices).
+  uint32_t addVertex(const glm::vec3& p);
+  // Appends the triangle of vertices i, j, k; false (nothing added) when it is not kept.
+  bool addTriangle(uint32_t i, uint32_t j, uint32_t k, Rgba8 color);
   void append(const Mesh& other);
 };
 
@@ -116,7 +135,7 @@ struct Scene {
 
   const Node& rootNode() const { return nodes[root]; }
   uint64_t uniqueTriangles() const;                 // stored once each
-  // What the model holds: the meshes' arrays (3 positions, a normal and a colour a triangle) and
+  // What the model holds: the meshes' arrays (vertices, 3 indices and a colour a triangle) and
   // the instances with their ID offsets, as allocated.
   uint64_t heldBytes() const;
   uint64_t expandedTriangles() const { return expandedCount[root]; }

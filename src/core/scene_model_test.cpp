@@ -36,6 +36,30 @@ TEST(Mesh, DropsDegenerateAndNonFiniteTriangles) {
   EXPECT_NEAR(m.normal(1).z, 1.0f, 1e-6f);
 }
 
+TEST(Mesh, IndexedTrianglesShareVerticesAndAppendOffsetsThem) {
+  Mesh m;
+  const uint32_t a = m.addVertex({0, 0, 0}), b = m.addVertex({1, 0, 0}), c = m.addVertex({1, 1, 0}),
+                 d = m.addVertex({0, 1, 0});
+  EXPECT_TRUE(m.addTriangle(a, b, c, 1));
+  EXPECT_TRUE(m.addTriangle(a, c, d, 2));
+  EXPECT_FALSE(m.addTriangle(a, a, c, 3));  // repeated vertex: nothing added
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_EQ(m.positions.size(), 4u);
+  EXPECT_EQ(m.indices.size(), 6u);
+  EXPECT_EQ(m.vertex(1, 2), glm::vec3(0, 1, 0));
+  EXPECT_EQ(m.normal(1), glm::vec3(0, 0, 1));
+  Mesh twice = m;
+  twice.append(m);
+  ASSERT_EQ(twice.size(), 4u);
+  EXPECT_EQ(twice.positions.size(), 8u);
+  for (size_t t = 0; t < 2; ++t)
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(twice.vertex(t + 2, k), m.vertex(t, k));
+      EXPECT_EQ(twice.indices[3 * (t + 2) + size_t(k)], m.indices[3 * t + size_t(k)] + 4u);
+    }
+  EXPECT_EQ(twice.colors[3], 2u);
+}
+
 // Root: 2 own triangles, instance of A (2 triangles) twice, instance of B which holds A thrice.
 Scene nested() {
   Scene s;

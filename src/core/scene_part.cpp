@@ -1,5 +1,7 @@
 #include "src/core/scene_part.hpp"
 
+#include <absl/container/flat_hash_map.h>
+
 #include <algorithm>
 #include <map>
 #include <queue>
@@ -141,20 +143,27 @@ void reserveKept(const PartOf& partOf, uint64_t count, uint32_t meshNode,
     if (partOf[t] != kNoPart) ++kept[partOf[t]];
   for (size_t p = 0; p < parts.size(); ++p) {
     Mesh& to = parts[p].scene.nodes[meshNode].mesh;
-    to.positions.reserve(to.positions.size() + 3 * kept[p]);
+    to.indices.reserve(to.indices.size() + 3 * kept[p]);
     to.colors.reserve(to.colors.size() + kept[p]);
   }
 }
 
 void keepMainMeshTriangles(const Mesh& from, uint64_t firstId, const PartOf& partOf,
                            uint32_t meshNode, std::vector<ScenePart>& parts) {
+  // (part, vertex of `from`) -> the part's vertex: a vertex shared by triangles of one part
+  // stays shared there.
+  absl::flat_hash_map<uint64_t, uint32_t> vertexIn;
   for (size_t t = 0; t < from.size(); ++t) {
     const uint64_t id = firstId + t;
     if (id >= partOf.size() || partOf[id] == kNoPart) continue;
     ScenePart& part = parts[partOf[id]];
     Mesh& to = part.scene.nodes[meshNode].mesh;
-    to.positions.insert(to.positions.end(), from.positions.begin() + ptrdiff_t(3 * t),
-                        from.positions.begin() + ptrdiff_t(3 * t + 3));
+    for (int k = 0; k < 3; ++k) {
+      const uint32_t v = from.indices[3 * t + size_t(k)];
+      const auto [it, added] = vertexIn.try_emplace((uint64_t(partOf[id]) << 32) | v, 0u);
+      if (added) it->second = to.addVertex(from.positions[v]);
+      to.indices.push_back(it->second);
+    }
     to.colors.push_back(from.colors[t]);
     part.ids.add(id, 1);
     ++part.units;

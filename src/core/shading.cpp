@@ -2,10 +2,20 @@
 
 #include "src/core/camera.hpp"
 #include "src/core/framebuffer.hpp"
+#include "src/core/prefetch.hpp"
 
 namespace lzb {
 
 namespace {
+
+// The frame's constants: the eye and the light, normalised once rather than at every pixel.
+struct Lighting {
+  glm::dvec3 eye;
+  glm::vec3 toLight;
+  float ambient;
+  Lighting(const Scene& scene, const glm::dvec3& e)
+      : eye(e), toLight(lightDirection(scene.light)), ambient(float(scene.light.ambient)) {}
+};
 
 // A placement of a node (a leaf of the instance tree): its expanded IDs [base, end), transform
 // and normal matrix, worked out once for the run of pixels that show it.
@@ -20,16 +30,38 @@ struct Placement {
     transform = m;
     normalMatrix = glm::transpose(glm::inverse(glm::dmat3(m)));
   }
+  // transform * (p, 1), summed in glm's order ((c0 x + c1 y) + (c2 z + c3)): the same bits
+  // without the w column's products.
+  glm::dvec3 place(const glm::vec3& p) const {
+    const glm::dvec3 c0(transform[0]), c1(transform[1]), c2(transform[2]), c3(transform[3]);
+    return (c0 * double(p.x) + c1 * double(p.y)) + (c2 * double(p.z) + c3);
+  }
 };
 
-Rgba8 shadePlaced(const Scene& scene, const Placement& p, uint32_t triangle, const glm::dvec3& eye) {
+Rgba8 shadePlaced(const Scene& scene, const Placement& p, uint32_t triangle, const Lighting& l) {
   const Mesh& mesh = scene.nodes[p.node].mesh;
   const glm::dvec3 n = glm::normalize(p.normalMatrix * glm::dvec3(mesh.normal(triangle)));
-  const glm::dvec3 v0 =
-      glm::dvec3(p.transform * glm::dvec4(glm::dvec3(mesh.vertex(triangle, 0)), 1.0));
-  const bool facing = glm::dot(n, eye - v0) >= 0.0;
-  return shade(mesh.colors[triangle], glm::vec3(n), facing, lightDirection(scene.light),
-               float(scene.light.ambient));
+  const bool facing = glm::dot(n, l.eye - p.place(mesh.vertex(triangle, 0))) >= 0.0;
+  return shade(mesh.colors[triangle], glm::vec3(n), facing, l.toLight, l.ambient);
+}
+
+// Sub-pixel triangles are shaded once each from scattered indices and vertices: their triangle
+// indices are fetched 16 pixels ahead, their corners and colour 8 ahead (within the placement).
+void prefetchAhead(const Scene& scene, const Placement& p, const Framebuffer& fb, long i, long n) {
+  constexpr long kIndices = 16, kCorners = 8;
+  if (p.end <= p.base) return;
+  const Mesh& mesh = scene.nodes[p.node].mesh;
+  if (i + kIndices < n) {
+    const uint64_t id = fb.id[size_t(i + kIndices)];
+    if (id >= p.base && id < p.end) prefetchRead(&mesh.indices[3 * (id - p.base)]);
+  }
+  if (i + kCorners < n) {
+    const uint64_t id = fb.id[size_t(i + kCorners)];
+    if (id < p.base || id >= p.end) return;
+    const uint32_t* c = &mesh.indices[3 * (id - p.base)];
+    for (int k = 0; k < 3; ++k) prefetchRead(&mesh.positions[c[k]]);
+    prefetchRead(&mesh.colors[id - p.base]);
+  }
 }
 
 }  // namespace
@@ -38,12 +70,12 @@ Rgba8 shadeTriangle(const Scene& scene, uint32_t node, uint32_t triangle, const 
                     const glm::dvec3& eye) {
   Placement p;
   p.set(node, transform);
-  return shadePlaced(scene, p, triangle, eye);
+  return shadePlaced(scene, p, triangle, Lighting(scene, eye));
 }
 
 void shadeFromIds(const Scene& scene, const Camera& camera, Framebuffer& fb) {
   const long n = long(fb.size());
-  const glm::dvec3 eye = camera.position();
+  const Lighting lighting(scene, camera.position());
 #pragma omp parallel
   {
     // Neighbouring pixels mostly show the same triangle, or another of the same placement:
@@ -53,6 +85,7 @@ void shadeFromIds(const Scene& scene, const Camera& camera, Framebuffer& fb) {
     Placement placement;
 #pragma omp for schedule(static)
     for (long i = 0; i < n; ++i) {
+      prefetchAhead(scene, placement, fb, i, n);
       const uint64_t id = fb.id[size_t(i)];
       if (id == kNoId) {
         fb.color[size_t(i)] = kBackground;
@@ -71,7 +104,7 @@ void shadeFromIds(const Scene& scene, const Camera& camera, Framebuffer& fb) {
           placement.base = id - ref->triangle;
           placement.end = placement.base + scene.nodes[ref->node].mesh.size();
         }
-        lastColor = shadePlaced(scene, placement, uint32_t(id - placement.base), eye);
+        lastColor = shadePlaced(scene, placement, uint32_t(id - placement.base), lighting);
         lastId = id;
       }
       fb.color[size_t(i)] = lastColor;

@@ -123,9 +123,7 @@ class OctreeBuilder {
   static constexpr size_t kPrefetch = 16;
   void prefetch(uint32_t entry) const {
     if (Octree::isInstance(entry)) return;
-    const char* p = reinterpret_cast<const char*>(&mesh_.positions[3 * size_t(entry)]);
-    __builtin_prefetch(p);
-    __builtin_prefetch(p + sizeof(glm::vec3[3]) - 1);
+    __builtin_prefetch(&mesh_.indices[3 * size_t(entry)]);
   }
 
   void makeLeaf(PendingNode& node, std::vector<uint32_t> entries, double budget) {

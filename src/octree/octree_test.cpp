@@ -276,6 +276,7 @@ TEST(Octree, EmptyTinyAndNonFiniteInput) {
   // A triangle with a NaN vertex pushed past Mesh::add's check is left out and counted.
   one.positions.insert(one.positions.end(), {glm::vec3(std::numeric_limits<float>::quiet_NaN()),
                                              glm::vec3(1.0f), glm::vec3(2.0f)});
+  one.indices.insert(one.indices.end(), {3, 4, 5});
   one.colors.push_back(0);
   const Octree tree(one, {}, {});
   EXPECT_EQ(tree.nodeCount(), 1u);

@@ -53,6 +53,8 @@ TEST(SampleTreeBench, SoupDrawAgainstTheNativeZBufferOnTheSameTriangles) {
     mesh.positions.insert(mesh.positions.end(), tree.positions.begin() + long(3 * r.begin),
                           tree.positions.begin() + long(3 * r.end));
   const size_t n = mesh.positions.size() / 3;
+  mesh.indices.resize(3 * n);
+  std::iota(mesh.indices.begin(), mesh.indices.end(), 0u);
   mesh.colors.assign(n, Rgba8{});
   same.finalize();
   DrawLists lists;

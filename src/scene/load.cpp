@@ -1,5 +1,7 @@
 #include "src/scene/load.hpp"
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
@@ -41,7 +43,19 @@ Scene loadScene(const std::string& spec, bool quiet) {
   }
   require(scene.expandedTriangles() > 0, spec, "the scene has no triangles");
   if (!quiet) warnDropped(spec, scene.stats);
+  releaseSlack(scene);
   return scene;
+}
+
+void releaseSlack(Scene& scene) {
+  for (Node& node : scene.nodes) {
+    node.mesh.positions.shrink_to_fit();
+    node.mesh.indices.shrink_to_fit();
+    node.mesh.colors.shrink_to_fit();
+  }
+  // The loader's freed memory (assimp's copy of the file, grown arrays) would otherwise stay
+  // resident in the heap, while the methods' structures (Embree's BVH) are mapped elsewhere.
+  malloc_trim(0);
 }
 
 void warnDropped(const std::string& spec, const LoadStats& s) {

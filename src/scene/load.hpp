@@ -13,6 +13,8 @@ namespace lzb {
 // Throws InputError naming the file, line, generator or key on bad input. Unless quiet, prints a
 // warning to stderr when triangles were dropped (they are counted in Scene::stats either way).
 Scene loadScene(const std::string& spec, bool quiet = false);
+// Fits the meshes' arrays to their size and hands the heap's free memory back to the system.
+void releaseSlack(Scene& scene);
 // The one warning line for triangles a loader dropped (none when it dropped none).
 void warnDropped(const std::string& spec, const LoadStats& stats);
 

@@ -1,5 +1,6 @@
 #include "src/scene/mesh_builder.hpp"
 
+#include <bit>
 #include <cmath>
 #include <numbers>
 
@@ -21,12 +22,31 @@ bool MeshBuilder::triangle(const glm::dvec3& a, const glm::dvec3& b, const glm::
     ++stats_.nonFinite;
     return false;
   }
-  if (!mesh_.add(fa, fb, fc, color)) {
+  if (!keepsTriangle(fa, fb, fc)) {
     ++stats_.degenerate;
     return false;
   }
+  // A mesh emptied since (a streamed chunk handed out) holds none of the recent vertices.
+  if (mesh_.positions.empty() || recent_.empty()) recent_.assign(size_t(1) << kSlotBits, Slot{});
+  const uint32_t i = shared(fa), j = shared(fb), k = shared(fc);
+  mesh_.addTriangle(i, j, k, color);
   ++stats_.loaded;
   return true;
+}
+
+uint32_t MeshBuilder::shared(const glm::vec3& p) {
+  const Bits bits{std::bit_cast<uint32_t>(p.x), std::bit_cast<uint32_t>(p.y),
+                  std::bit_cast<uint32_t>(p.z)};
+  // MurmurHash3's 64-bit finaliser: a product sum of the bits alone clusters a sphere's
+  // corners into a few slots.
+  uint64_t h =
+      (uint64_t(bits[0]) | uint64_t(bits[1]) << 32) ^ uint64_t(bits[2]) * 0x9E3779B97F4A7C15u;
+  h = (h ^ h >> 33) * 0xFF51AFD7ED558CCDu;
+  h = (h ^ h >> 33) * 0xC4CEB9FE1A85EC53u;
+  Slot& slot = recent_[(h ^ h >> 33) >> (64 - kSlotBits)];
+  if (slot.vertex < mesh_.positions.size() && slot.bits == bits) return slot.vertex;
+  slot = {bits, mesh_.addVertex(p)};
+  return slot.vertex;
 }
 
 void MeshBuilder::quad(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c,

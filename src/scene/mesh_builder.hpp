@@ -1,7 +1,12 @@
 #pragma once
 // Appends triangles given in double precision to a Mesh and counts what it drops, so generators
-// and loaders share one path into the scene model.
+// and loaders share one path into the scene model. A corner equal to the last bit (after rounding
+// to float) to one met recently is stored once and shared, whatever the input's own indexing:
+// every method sees the same floats as if stored three a triangle, in a fraction of the memory.
+#include <array>
+#include <cstdint>
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "src/core/bounds.hpp"
 #include "src/core/color.hpp"
@@ -11,6 +16,8 @@ namespace lzb {
 
 class MeshBuilder {
  public:
+  // `mesh` may be emptied between triangles (a streamed chunk handed out): the builder then starts
+  // sharing afresh.
   MeshBuilder(Mesh& mesh, LoadStats& stats) : mesh_(mesh), stats_(stats) {}
 
   // Returns false (and counts the reason) when the triangle is not finite or is degenerate after
@@ -27,8 +34,20 @@ class MeshBuilder {
   void sphere(int slices, int stacks, Rgba8 color);
 
  private:
+  using Bits = std::array<uint32_t, 3>;
+  struct Slot {
+    Bits bits{};
+    uint32_t vertex = ~uint32_t(0);  // none
+  };
+  // Recent corners by a hash of their bits, one per slot: a direct-mapped cache, not a map of
+  // every vertex, so a 10^7-triangle load stays within cache (a corner evicted before it recurs
+  // is stored twice, which costs memory, never correctness). 2^16 slots cover a grid's next row.
+  static constexpr uint32_t kSlotBits = 16;
+  uint32_t shared(const glm::vec3& p);
+
   Mesh& mesh_;
   LoadStats& stats_;
+  std::vector<Slot> recent_;
 };
 
 }  // namespace lzb

@@ -54,6 +54,22 @@ TEST(MeshFile, ObjPlyOffStlLoad) {
   }
 }
 
+TEST(MeshFile, EqualCornersAreStoredOnceWhateverTheFilesIndexing) {
+  ScratchDir dir;
+  // The quad indexed (OBJ) and as two triangles of their own corners (STL): 4 vertices each.
+  const std::string stl =
+      "solid q\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\n"
+      "endloop\nendfacet\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 1 0\n"
+      "vertex 0 1 0\nendloop\nendfacet\nendsolid q\n";
+  for (const auto& [name, text] :
+       std::vector<std::pair<std::string, std::string>>{{"q.obj", kQuadObj}, {"q.stl", stl}}) {
+    const Mesh& m = load(dir.write(name, text)).rootNode().mesh;
+    ASSERT_EQ(m.size(), 2u) << name;
+    EXPECT_EQ(m.positions.size(), 4u) << name;
+    EXPECT_EQ(m.vertex(1, 1), glm::vec3(1, 1, 0)) << name;
+  }
+}
+
 TEST(MeshFile, PolygonsAreTriangulated) {
   ScratchDir dir;
   // A quad and a concave pentagon (the notch at (2, 1)).

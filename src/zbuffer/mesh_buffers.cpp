@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "src/zbuffer/gl_api.hpp"
 
@@ -18,12 +19,16 @@ void MeshBuffers::upload(const Mesh& mesh) {
   const uint64_t chunks = (triangles_ + kChunkTriangles - 1) / kChunkTriangles;
   buffers_.assign(chunks, 0);
   if (chunks) g.GenBuffers(GLsizei(chunks), buffers_.data());
+  std::vector<glm::vec3> corners;  // a chunk's triangles unshared: the shader's ID is vertex / 3
   for (uint64_t c = 0; c < chunks; ++c) {
     const uint64_t first = c * kChunkTriangles;
     const uint64_t count = std::min(kChunkTriangles, triangles_ - first);
+    corners.resize(3 * count);
+    for (uint64_t t = 0; t < count; ++t)
+      for (int k = 0; k < 3; ++k) corners[3 * t + uint64_t(k)] = mesh.vertex(first + t, k);
     g.BindBuffer(GL_ARRAY_BUFFER, buffers_[c]);
-    g.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(count * 3 * sizeof(glm::vec3)),
-                 mesh.positions.data() + 3 * first, GL_STATIC_DRAW);
+    g.BufferData(GL_ARRAY_BUFFER, GLsizeiptr(count * 3 * sizeof(glm::vec3)), corners.data(),
+                 GL_STATIC_DRAW);
   }
   check("uploading a mesh (out of memory?)");
   uploaded_ = true;

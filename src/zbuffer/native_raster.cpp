@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "src/core/prefetch.hpp"
 #include "src/core/range_pieces.hpp"
 #include "src/zbuffer/soup_prefilter.hpp"
 
@@ -376,7 +377,7 @@ void NativeRasterizer::draw(const Scene& scene, const Camera& camera, const Draw
     first[l + 1] = first[l] + lists.lists[l].triangles.size();
   }
   const PassGeometry geometry(camera, fb.width, fb.height, farClip);
-  constexpr size_t kPrefetch = 8;  // triangles ahead
+  constexpr size_t kPrefetch = 8;  // triangles ahead (their corners; their indices twice as far)
   // Set-up: transform, clip, snap, bin to bands (per thread, so no locks).
   binChunks(first, part.begin, part.end, geometry, threads, bins_, counts_,
             [&](Binner& binner, size_t l, size_t from, size_t to) {
@@ -384,20 +385,23 @@ void NativeRasterizer::draw(const Scene& scene, const Camera& camera, const Draw
               const DrawList& list = lists.lists[l];
               const uint32_t* tris = list.triangles.data();
               const size_t n = list.triangles.size();
-              const glm::vec3* pos = scene.nodes[list.node].mesh.positions.data();
+              const Mesh& mesh = scene.nodes[list.node].mesh;
+              const glm::vec3* pos = mesh.positions.data();
+              const uint32_t* corners = mesh.indices.data();
               const ViewTransform& xf = transforms[l];
               for (size_t i = from; i < to; ++i) {
-                // Triangles are scattered over the mesh: fetch a later one's vertices ahead.
+                // Triangles are scattered over the mesh: fetch a later one's indices ahead, and
+                // the corners of a nearer one (its indices fetched by then).
+                if (i + 2 * kPrefetch < n)
+                  prefetchRead(corners + 3 * size_t(tris[i + 2 * kPrefetch]));
                 if (i + kPrefetch < n) {
-                  const char* p =
-                      reinterpret_cast<const char*>(pos + 3 * size_t(tris[i + kPrefetch]));
-                  __builtin_prefetch(p);
-                  __builtin_prefetch(p + sizeof(glm::vec3[3]) - 1);
+                  const uint32_t* ahead = corners + 3 * size_t(tris[i + kPrefetch]);
+                  for (int k = 0; k < 3; ++k) prefetchRead(pos + ahead[k]);
                 }
                 const uint32_t tri = tris[i];
-                const glm::vec3* corner = pos + 3 * size_t(tri);
+                const uint32_t* c = corners + 3 * size_t(tri);
                 glm::dvec3 view[3];
-                for (int k = 0; k < 3; ++k) view[k] = xf.a * glm::dvec3(corner[k]) + xf.b;
+                for (int k = 0; k < 3; ++k) view[k] = xf.a * glm::dvec3(pos[c[k]]) + xf.b;
                 binner.add(view, list.idBase + tri);
               }
             });
