@@ -52,7 +52,7 @@ def export_ply(objects):
     path = os.path.join(SCRATCH, f"lzb-memory-landscape-{objects}.ply")
     if not os.path.exists(path):
         subprocess.run([common.LZB, "export", f"builtin:landscape?objects={objects}", path,
-                        "--quiet", "--max-triangles", "1e9"], check=True, env=common.ENV)
+                        "--quiet", "--max-triangles", "1000000000"], check=True, env=common.ENV)
     return path
 
 

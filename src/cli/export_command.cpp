@@ -21,13 +21,17 @@ struct PlyFace {
 };
 #pragma pack(pop)
 
-void writePly(const Scene& scene, const std::filesystem::path& path) {
-  const std::vector<DrawItem> items = flattenScene(scene);
-  const uint64_t triangles = scene.expandedTriangles();
-  uint64_t vertices = 0;  // each placed mesh's shared vertices, once
+// Each placed mesh's shared vertices, once.
+uint64_t placedVertices(const Scene& scene, const std::vector<DrawItem>& items) {
+  uint64_t vertices = 0;
   for (const DrawItem& item : items) vertices += scene.nodes[item.node].mesh.positions.size();
-  require(vertices <= uint64_t(INT32_MAX), path.string(),
-          "more than 2^31 - 1 vertices: a PLY face indexes them with int");
+  return vertices;
+}
+
+void writePly(const Scene& scene, const std::vector<DrawItem>& items,
+              const std::filesystem::path& path) {
+  const uint64_t triangles = scene.expandedTriangles();
+  const uint64_t vertices = placedVertices(scene, items);
   std::ofstream out(path, std::ios::binary);
   out << "ply\nformat binary_little_endian 1.0\ncomment lzb export of " << scene.source
       << "\nelement vertex " << vertices
@@ -67,14 +71,15 @@ void addExportOptions(CLI::App& c, ExportArgs& a) {
 }
 
 int runExport(const ExportArgs& a, const mpi::Group& g) {
-  require(a.maxTriangles <= (uint64_t(1) << 31) / 3, "--max-triangles",
-          "must be at most " + std::to_string((uint64_t(1) << 31) / 3) + " (PLY indices are int)");
   const Scene scene = loadScene(a.scene, a.quiet || !g.root());
   require(scene.expandedTriangles() <= a.maxTriangles, a.scene,
           std::to_string(scene.expandedTriangles()) + " triangles expanded, more than --max-triangles " +
               std::to_string(a.maxTriangles));
+  const std::vector<DrawItem> items = flattenScene(scene);
+  require(placedVertices(scene, items) <= uint64_t(INT32_MAX), a.scene,
+          "more than 2^31 - 1 vertices placed: a PLY face indexes them with int");
   if (!g.root()) return 0;
-  writeAtomically(a.out, [&](const std::filesystem::path& tmp) { writePly(scene, tmp); });
+  writeAtomically(a.out, [&](const std::filesystem::path& tmp) { writePly(scene, items, tmp); });
   if (!a.quiet)
     std::printf("lzb: %llu triangles written to %s\n",
                 (unsigned long long)scene.expandedTriangles(), a.out.c_str());
