@@ -35,12 +35,12 @@ expect_refusal "every rank limited" "every rank holding" -n 2 "${one[@]}"
 share=("${limit[@]}" 1000000 "$lzb" "${run[@]}" --distribute data)
 expect_refusal "a data share too large" "rank 0 of 2 holding" -n 2 "${share[@]}"
 
-# The capacity case: under 1.1 GiB a rank refuses raycast's whole 4.8 M triangles (1.0 GiB
+# The capacity case: under 0.95 GiB a rank refuses raycast's whole 4.8 M triangles (670 MiB
 # estimated, above the limit less the process's own mapping), so --distribute auto cuts the scene
 # across 2 ranks, each under the same limit, and the image is that of 1 rank without the limit.
 exact=(render "$scene" --method raycast --quiet --threads 1 --frames 1 --width 160 --height 120)
 "$lzb" "${exact[@]}" --out "$work/whole" >/dev/null
-timeout 120 "$mpiexec" --oversubscribe -n 2 "${limit[@]}" 1150000 "$lzb" "${exact[@]}" \
+timeout 120 "$mpiexec" --oversubscribe -n 2 "${limit[@]}" 1000000 "$lzb" "${exact[@]}" \
   --distribute auto --out "$work/auto" >/dev/null
 grep -q '"distribution": "data"' "$work/auto/report.json" || { echo "FAIL: auto did not cut"; exit 1; }
 cmp "$work/whole/frame_0000.exr" "$work/auto/frame_0000.exr" ||

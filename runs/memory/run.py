@@ -8,6 +8,7 @@ are measured side by side (A/B).
 
 Usage: python3 runs/memory/run.py [--before=PATH/lzb] [--sizes=40000,400000,2000000]
        [--methods=zbuffer,raycast,lzb,hybrid,rzb] [--big-methods=raycast,hybrid] [--no-wait]
+       [--plot-only]  (redraws memory.png from memory.csv)
        (from the repository root, after scripts/build.sh; sizes are landscape objects: ~1.0 M,
        9.6 M and 48 M unique triangles; the largest size renders only --big-methods and no PLY)
 Writes runs/memory/memory.csv and memory.png (bytes per triangle per method and build).
@@ -20,7 +21,7 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402
 
-common.accept_args(valued=("before", "sizes", "methods", "big-methods"))
+common.accept_args(flags=("--plot-only",), valued=("before", "sizes", "methods", "big-methods"))
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCRATCH = os.environ.get("LZB_SCRATCH", "/tmp")
@@ -84,11 +85,11 @@ def plot(rows):
     if not plys:
         return
     scene = plys[-1]
-    names = [n for n, _ in builds()]
+    names = list(dict.fromkeys(r["build"] for r in rows))
     methods = [m for m in METHODS if any(r["method"] == m and r["scene"] == scene for r in rows)]
     data = []
     for i, m in enumerate(methods):
-        vals = [next((r["bytes_per_triangle"] for r in rows if r["scene"] == scene and
+        vals = [next((float(r["bytes_per_triangle"]) for r in rows if r["scene"] == scene and
                       r["method"] == m and r["build"] == n), 0) for n in names]
         data.append([i, *vals])
     cols = ", ".join(f"DATA using {k + 2} title '{n}'" for k, n in enumerate(names))
@@ -97,7 +98,9 @@ def plot(rows):
     common.gnuplot(f"""
 set terminal pngcairo size 900,500 font ',10'
 set output '{os.path.join(HERE, "memory.png")}'
-set title 'peak resident bytes per unique triangle, {scene}-object landscape PLY (3 frames, 640x480, 2 threads)'
+set title 'peak resident bytes per unique triangle: the {scene.split()[1]}-object landscape as a PLY (3 frames, 640x480, 2 threads)'
+set yrange [0:*]
+set key top left
 set style data histograms
 set style histogram clustered
 set style fill solid 0.8 border -1
@@ -109,4 +112,7 @@ plot {cols.replace("DATA", f"'{datafile}'")}
 
 
 if __name__ == "__main__":
-    main()
+    if "--plot-only" in sys.argv:
+        plot(common.read_csv(os.path.join(HERE, "memory.csv")))
+    else:
+        main()

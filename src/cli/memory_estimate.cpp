@@ -16,10 +16,10 @@ struct Model {
 
 // runs/distribute/memory_model.csv (2 threads, 640x480): slopes and bases, rounded up.
 const std::map<std::string, Model>& models() {
-  static const std::map<std::string, Model> m = {{"zbuffer", {96, 180}}, {"raycast", {200, 80}},
-                                                 {"lzb", {256, 80}},     {"hybrid", {280, 110}},
-                                                 {"rzb", {232, 90}},     {"surfels", {80, 100}},
-                                                 {"sqrt5", {88, 100}},   {"sampletree", {200, 80}}};
+  static const std::map<std::string, Model> m = {{"zbuffer", {80, 170}}, {"raycast", {128, 80}},
+                                                 {"lzb", {184, 80}},     {"hybrid", {208, 100}},
+                                                 {"rzb", {208, 90}},     {"surfels", {56, 100}},
+                                                 {"sqrt5", {56, 100}},   {"sampletree", {144, 90}}};
   return m;
 }
 
