@@ -15,11 +15,15 @@ namespace {
 nlohmann::json rankEntry(int rank, const FrameStats& stats) {
   nlohmann::json stages = nlohmann::json::object();
   for (const auto& [name, seconds] : stats.stageSeconds) stages[name] = seconds;
-  return {{"rank", rank},
-          {"stages", stages},
-          {"counts", stats.counts},
-          {"shared", stats.shared},
-          {"peak_memory_bytes", peakMemoryBytes()}};
+  nlohmann::json entry = {{"rank", rank},
+                          {"stages", stages},
+                          {"counts", stats.counts},
+                          {"shared", stats.shared},
+                          {"peak_memory_bytes", peakMemoryBytes()}};
+  // The set-up's entry: what the rank's peak cost a triangle it holds.
+  const double held = stats.counts.value("held_unique_triangles", 0.0);
+  if (held > 0.0) entry["peak_bytes_per_unique_triangle"] = double(peakMemoryBytes()) / held;
+  return entry;
 }
 
 // Adds b's numbers into a (keys missing from a are taken over).

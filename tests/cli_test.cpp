@@ -351,6 +351,12 @@ TEST(Info, EstimatesEachRanksPeakForItsShare) {
   }
   EXPECT_EQ(held, cut["triangles_unique"].get<double>()) << "the shares make the scene";
   EXPECT_EQ(whole["estimate"]["ranks"][1]["triangles"], whole["triangles_unique"]);
+  // The method's bytes a triangle: the slope of every rank's estimate.
+  const double slope = whole["estimate"]["bytes_per_triangle"].get<double>();
+  EXPECT_GT(slope, 0.0);
+  EXPECT_DOUBLE_EQ(
+      ranks[0]["peak_bytes"].get<double>() - ranks[1]["peak_bytes"].get<double>(),
+      slope * (ranks[0]["triangles"].get<double>() - ranks[1]["triangles"].get<double>()));
   EXPECT_EQ(runLzb(scene + "--distribute auto").status, 2);
 }
 

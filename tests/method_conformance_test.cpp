@@ -133,6 +133,11 @@ TEST_P(MethodConformance, ReportCarriesTheCommonFields) {
   EXPECT_EQ(rep["height"], 48);
   EXPECT_TRUE(rep["setup"]["stages"].is_object());
   EXPECT_TRUE(rep["setup"]["counts"].is_object());
+  // What the rank's peak cost a triangle it holds (the scene's, replicated).
+  const nlohmann::json& rank = rep["setup"]["ranks"][0];
+  EXPECT_DOUBLE_EQ(rank["peak_bytes_per_unique_triangle"].get<double>(),
+                   rank["peak_memory_bytes"].get<double>() /
+                       rank["counts"]["held_unique_triangles"].get<double>());
   EXPECT_GT(rep["summary"]["median_frame_seconds"].get<double>(), 0.0);
   ASSERT_EQ(rep["frames"].size(), 2u);
   for (const auto& f : rep["frames"]) {

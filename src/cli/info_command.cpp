@@ -36,9 +36,9 @@ namespace {
 void printEstimate(const nlohmann::json& e) {
   const auto& ranks = e["ranks"];
   std::printf(
-      "estimate:   --method %s, %zu rank(s), --distribute %s (one process may use %.0f MiB here, "
-      "ranks on one machine divide it)\n",
-      e["method"].get<std::string>().c_str(), ranks.size(),
+      "estimate:   --method %s (%.0f bytes a triangle held), %zu rank(s), --distribute %s (one "
+      "process may use %.0f MiB here, ranks on one machine divide it)\n",
+      e["method"].get<std::string>().c_str(), e["bytes_per_triangle"].get<double>(), ranks.size(),
       e["distribute"].get<std::string>().c_str(), e["usable_bytes"].get<double>() / 1048576.0);
   constexpr size_t kListed = 8;
   for (size_t r = 0; r < std::min(ranks.size(), kListed); ++r)
@@ -61,7 +61,10 @@ nlohmann::json rankEstimates(const InfoArgs& a, const Scene& scene) {
                      {"triangles", triangles},
                      {"peak_bytes", methodPeakBytes(a.method, triangles)}});
   }
+  // The model's slope: the method's set-up and frames, scene model included.
+  const double perTriangle = double(methodPeakBytes(a.method, 1) - methodPeakBytes(a.method, 0));
   return {{"method", a.method},
+          {"bytes_per_triangle", perTriangle},
           {"distribute", a.distribute},
           {"ranks", ranks},
           {"usable_bytes", usableMemoryBytes()}};

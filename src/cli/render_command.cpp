@@ -268,7 +268,10 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
       judge = makeJudge(a.reference, plan.scene, plan.options, groups.group().root());
     setupSeconds = setupClock.seconds();
   });
-  const nlohmann::json methodSetup = mpi::gatherStats(g, renderer->setupStats());
+  FrameStats setupStats = renderer->setupStats();
+  if (distribution != Distribution::kData)  // a part renderer counts what its rank holds
+    setupStats.addCount("held_unique_triangles", double(plan.scene.uniqueTriangles()));
+  const nlohmann::json methodSetup = mpi::gatherStats(g, setupStats);
   Report report(a, plan.options, g, plan.outline, plan.sceneLoaded, commandLine);
   report.setImageSize(plan.width, plan.height);
   report.setMethod(*renderer, judge.reference.get());
