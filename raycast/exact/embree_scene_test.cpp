@@ -218,7 +218,7 @@ TEST(EmbreeScene, RootMeshFarFromOriginMatchesBruteForce) {
   const glm::vec3 at(1.0e7f, 2.0e7f, -1.0e7f);
   for (size_t t = 0; t < local.size(); ++t)
     scene.nodes[0].mesh.add(at + 4.0f * local.vertex(t, 0), at + 4.0f * local.vertex(t, 1),
-                            at + 4.0f * local.vertex(t, 2), local.colors[t]);
+                            at + 4.0f * local.vertex(t, 2), local.color(t));
   scene.finalize();
   compareWithBruteForce(scene, {}, 300);
 }

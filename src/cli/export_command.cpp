@@ -52,7 +52,7 @@ void writePly(const Scene& scene, const std::vector<DrawItem>& items,
     for (size_t t = 0; t < mesh.size(); ++t) {
       PlyFace f;
       for (int k = 0; k < 3; ++k) f.index[k] = base + int32_t(mesh.indices[3 * t + size_t(k)]);
-      for (int k = 0; k < 3; ++k) f.rgb[k] = channel(mesh.colors[t], k);
+      for (int k = 0; k < 3; ++k) f.rgb[k] = channel(mesh.color(t), k);
       out.write(reinterpret_cast<const char*>(&f), sizeof(f));
     }
     base += int32_t(mesh.positions.size());

@@ -45,7 +45,7 @@ void expectSamePart(const ScenePart& streamed, const ScenePart& cut) {
     const Mesh &ma = s.nodes[a->node].mesh, &mb = c.nodes[b->node].mesh;
     for (int k = 0; k < 3; ++k) EXPECT_EQ(ma.vertex(a->triangle, k), mb.vertex(b->triangle, k));
     EXPECT_EQ(ma.normal(a->triangle), mb.normal(b->triangle));
-    EXPECT_EQ(ma.colors[a->triangle], mb.colors[b->triangle]);
+    EXPECT_EQ(ma.color(a->triangle), mb.color(b->triangle));
   }
 }
 

@@ -29,6 +29,7 @@ uint32_t Mesh::addVertex(const glm::vec3& p) {
 bool Mesh::add(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, Rgba8 color) {
   if (!keepsTriangle(a, b, c)) return false;
   const uint32_t i = addVertex(a), j = addVertex(b), k = addVertex(c);
+  spreadColors();
   indices.insert(indices.end(), {i, j, k});
   colors.push_back(color);
   return true;
@@ -36,6 +37,7 @@ bool Mesh::add(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, Rgba8
 
 bool Mesh::addTriangle(uint32_t i, uint32_t j, uint32_t k, Rgba8 color) {
   if (!keepsTriangle(positions[i], positions[j], positions[k])) return false;
+  spreadColors();
   indices.insert(indices.end(), {i, j, k});
   colors.push_back(color);
   return true;
@@ -44,10 +46,21 @@ bool Mesh::addTriangle(uint32_t i, uint32_t j, uint32_t k, Rgba8 color) {
 void Mesh::append(const Mesh& other) {
   if (positions.size() + other.positions.size() > size_t(UINT32_MAX))
     throw std::length_error("a mesh holds at most 2^32 - 1 vertices");
+  spreadColors();
   const uint32_t base = uint32_t(positions.size());
   positions.insert(positions.end(), other.positions.begin(), other.positions.end());
   for (const uint32_t i : other.indices) indices.push_back(base + i);
-  colors.insert(colors.end(), other.colors.begin(), other.colors.end());
+  for (size_t t = 0; t < other.size(); ++t) colors.push_back(other.color(t));
+}
+
+void Mesh::uniformColors() {
+  if (colors.size() > 1 &&
+      std::all_of(colors.begin(), colors.end(), [&](Rgba8 c) { return c == colors[0]; }))
+    colors = {colors[0]};
+}
+
+void Mesh::spreadColors() {
+  if (colors.size() == 1 && size() > 1) colors.assign(size(), colors[0]);
 }
 
 uint32_t Scene::addNode(std::string name) {

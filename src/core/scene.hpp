@@ -49,15 +49,20 @@ inline glm::vec3 triangleNormal(const glm::vec3& a, const glm::vec3& b, const gl
 bool keepsTriangle(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c);
 
 // Indexed triangles: vertices stored once and shared (a heightfield holds half a vertex a
-// triangle), three indices and one colour a triangle. Every vertex is used by some triangle, so
-// the vertices' box is the triangles' box.
+// triangle), three indices a triangle, and a colour a triangle or one for the whole mesh when
+// they are all alike (uniformColors). Every vertex is used by some triangle, so the vertices'
+// box is the triangles' box.
 struct Mesh {
   std::vector<glm::vec3> positions;  // vertices, node frame
   std::vector<uint32_t> indices;     // 3 per triangle, into positions
-  std::vector<Rgba8> colors;         // 1 per triangle
+  std::vector<Rgba8> colors;         // 1 per triangle, or 1 for every triangle (read by color())
 
-  size_t size() const { return colors.size(); }
-  bool empty() const { return colors.empty(); }
+  size_t size() const { return indices.size() / 3; }
+  bool empty() const { return indices.empty(); }
+  Rgba8 color(size_t tri) const { return colors[colors.size() == 1 ? 0 : tri]; }
+  // Keeps one colour when every triangle has the same (4 bytes a triangle less); adding
+  // triangles later spreads it back.
+  void uniformColors();
   const glm::vec3& vertex(size_t tri, int corner) const {
     return positions[indices[3 * tri + size_t(corner)]];
   }
@@ -72,6 +77,9 @@ struct Mesh {
   // Appends the triangle of vertices i, j, k; false (nothing added) when it is not kept.
   bool addTriangle(uint32_t i, uint32_t j, uint32_t k, Rgba8 color);
   void append(const Mesh& other);
+
+ private:
+  void spreadColors();  // one colour a triangle again, before a triangle is added
 };
 
 struct Instance {

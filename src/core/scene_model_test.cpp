@@ -57,7 +57,27 @@ TEST(Mesh, IndexedTrianglesShareVerticesAndAppendOffsetsThem) {
       EXPECT_EQ(twice.vertex(t + 2, k), m.vertex(t, k));
       EXPECT_EQ(twice.indices[3 * (t + 2) + size_t(k)], m.indices[3 * t + size_t(k)] + 4u);
     }
-  EXPECT_EQ(twice.colors[3], 2u);
+  EXPECT_EQ(twice.color(3), 2u);
+}
+
+TEST(Mesh, OneColourStandsForAllAndSpreadsBackWhenTrianglesAreAdded) {
+  Mesh m = quad(7);
+  m.uniformColors();
+  ASSERT_EQ(m.colors.size(), 1u);
+  EXPECT_EQ(m.color(1), 7u);
+  EXPECT_TRUE(m.add({0, 0, 1}, {1, 0, 1}, {0, 1, 1}, 9));
+  ASSERT_EQ(m.colors.size(), 3u);
+  EXPECT_EQ(m.color(0), 7u);
+  EXPECT_EQ(m.color(1), 7u);
+  EXPECT_EQ(m.color(2), 9u);
+  m.uniformColors();
+  EXPECT_EQ(m.colors.size(), 3u) << "colours that differ are kept";
+  Mesh one = quad(5);
+  one.uniformColors();
+  Mesh both = quad(4);
+  both.append(one);
+  ASSERT_EQ(both.colors.size(), 4u);
+  EXPECT_EQ(both.color(3), 5u);
 }
 
 // Root: 2 own triangles, instance of A (2 triangles) twice, instance of B which holds A thrice.

@@ -164,7 +164,7 @@ void keepMainMeshTriangles(const Mesh& from, uint64_t firstId, const PartOf& par
       if (added) it->second = to.addVertex(from.positions[v]);
       to.indices.push_back(it->second);
     }
-    to.colors.push_back(from.colors[t]);
+    to.colors.push_back(from.color(t));
     part.ids.add(id, 1);
     ++part.units;
   }

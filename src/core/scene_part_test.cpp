@@ -76,8 +76,8 @@ TEST(ScenePart, APartKeepsItsUnitsWithTheWholeScenesIds) {
     for (int k = 0; k < 3; ++k)
       EXPECT_EQ(corner(part.scene, local, k), corner(whole, global, k)) << local << " corner " << k;
     const auto a = part.scene.resolve(local), b = whole.resolve(global);
-    EXPECT_EQ(part.scene.nodes[a->node].mesh.colors[a->triangle],
-              whole.nodes[b->node].mesh.colors[b->triangle]);
+    EXPECT_EQ(part.scene.nodes[a->node].mesh.color(a->triangle),
+              whole.nodes[b->node].mesh.color(b->triangle));
   }
   EXPECT_EQ(part.ids.global(part.ids.size()), kNoId);
   EXPECT_EQ(part.ids.global(kNoId), kNoId);

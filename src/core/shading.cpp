@@ -42,7 +42,7 @@ Rgba8 shadePlaced(const Scene& scene, const Placement& p, uint32_t triangle, con
   const Mesh& mesh = scene.nodes[p.node].mesh;
   const glm::dvec3 n = glm::normalize(p.normalMatrix * glm::dvec3(mesh.normal(triangle)));
   const bool facing = glm::dot(n, l.eye - p.place(mesh.vertex(triangle, 0))) >= 0.0;
-  return shade(mesh.colors[triangle], glm::vec3(n), facing, l.toLight, l.ambient);
+  return shade(mesh.color(triangle), glm::vec3(n), facing, l.toLight, l.ambient);
 }
 
 // Sub-pixel triangles are shaded once each from scattered indices and vertices: their triangle
@@ -60,7 +60,7 @@ void prefetchAhead(const Scene& scene, const Placement& p, const Framebuffer& fb
     if (id < p.base || id >= p.end) return;
     const uint32_t* c = &mesh.indices[3 * (id - p.base)];
     for (int k = 0; k < 3; ++k) prefetchRead(&mesh.positions[c[k]]);
-    prefetchRead(&mesh.colors[id - p.base]);
+    prefetchRead(&mesh.colors[mesh.colors.size() == 1 ? 0 : id - p.base]);
   }
 }
 

@@ -169,7 +169,7 @@ struct GaussSink {
     if (!(q.z <= double(depth[pixel]) + tolerance * q.z)) return;
     ++c.splatted;
     const glm::dvec3 nw = glm::normalize(normalToWorld * (facing ? n : -n));
-    const Rgba8 color = shade(leaf->mesh().colors[meshIndex], glm::vec3(nw), true, toLight, ambient);
+    const Rgba8 color = shade(leaf->mesh().color(meshIndex), glm::vec3(nw), true, toLight, ambient);
     const uint64_t rgb[3] = {channel(color, 0), channel(color, 1), channel(color, 2)};
     const int x0 = std::max(int(std::ceil(px - 0.5 - radius)), 0);
     const int x1 = std::min(int(std::floor(px - 0.5 + radius)), s.width - 1);

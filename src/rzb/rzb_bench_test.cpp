@@ -167,7 +167,7 @@ Scene flattened(const Scene& scene) {
       glm::vec3 v[3];
       for (int k = 0; k < 3; ++k)
         v[k] = glm::vec3(item.transform * glm::dvec4(glm::dvec3(src.vertex(t, k)), 1.0));
-      m.add(v[0], v[1], v[2], src.colors[t]);
+      m.add(v[0], v[1], v[2], src.color(t));
     }
   }
   out.camera = scene.camera;
@@ -194,7 +194,7 @@ TEST(RzbBench, DynamicUpdates) {
     for (int k = 0; k < 3; ++k)
       v[k] = glm::vec3((glm::dvec3(om.vertex(t, k)) - glm::dvec3(ob.center().x, ob.lo.y, ob.center().z)) * scale +
                        glm::dvec3(at.x, 0.0, at.z));
-    m.add(v[0], v[1], v[2], om.colors[t]);
+    m.add(v[0], v[1], v[2], om.color(t));
   }
   scene.finalize();
   const uint32_t total = uint32_t(m.size());

@@ -30,7 +30,7 @@ void SceneStream::forEach(const TriangleSink& sink) const {
     for (size_t t = 0; t < mesh.size(); ++t) {
       StreamTriangle s;
       for (int k = 0; k < 3; ++k) s.v[k] = placed(item.transform, mesh.vertex(t, k));
-      s.colour = mesh.colors[t];
+      s.colour = mesh.color(t);
       s.id = item.idBase + t;
       batch.push_back(s);
       if (batch.size() == kBatch) sink(batch), batch.clear();
@@ -49,7 +49,7 @@ void MeshChunkStream::forEach(const TriangleSink& sink) const {
     batch.resize(mesh.size());
     for (size_t t = 0; t < mesh.size(); ++t) {
       for (int k = 0; k < 3; ++k) batch[t].v[k] = placed(placement_, mesh.vertex(t, k));
-      batch[t].colour = mesh.colors[t];
+      batch[t].colour = mesh.color(t);
       batch[t].id = next++;
     }
     sink(batch);

@@ -33,7 +33,7 @@ std::vector<std::tuple<long, long, long, Rgba8>> worldTriangles(const Scene& s) 
       for (int k = 0; k < 3; ++k)
         c += glm::dvec3(d.transform * glm::dvec4(glm::dvec3(m.vertex(t, k)), 1.0));
       c *= 1e4 / 3.0;
-      out.emplace_back(std::lround(c.x), std::lround(c.y), std::lround(c.z), m.colors[t]);
+      out.emplace_back(std::lround(c.x), std::lround(c.y), std::lround(c.z), m.color(t));
     }
   }
   std::sort(out.begin(), out.end());
@@ -95,9 +95,9 @@ TEST(Chessboard, FlatCountsAndLayout) {
   ASSERT_TRUE(s.camera.has_value());
   // Two colours, alternating; normals up.
   const Mesh& m = s.rootNode().mesh;
-  EXPECT_NE(m.colors[0], m.colors[2]);
-  EXPECT_EQ(m.colors[0], m.colors[1]);
-  EXPECT_EQ(m.colors[0], m.colors[4]);
+  EXPECT_NE(m.color(0), m.color(2));
+  EXPECT_EQ(m.color(0), m.color(1));
+  EXPECT_EQ(m.color(0), m.color(4));
   for (size_t t = 0; t < m.size(); ++t) EXPECT_FLOAT_EQ(m.normal(t).y, 1.0f);
 }
 

@@ -51,6 +51,7 @@ void releaseSlack(Scene& scene) {
   for (Node& node : scene.nodes) {
     node.mesh.positions.shrink_to_fit();
     node.mesh.indices.shrink_to_fit();
+    node.mesh.uniformColors();
     node.mesh.colors.shrink_to_fit();
   }
   // The loader's freed memory (assimp's copy of the file, grown arrays) would otherwise stay

@@ -48,7 +48,7 @@ TEST(MeshFile, ObjPlyOffStlLoad) {
     EXPECT_EQ(s.expandedTriangles(), triangles) << name;
     EXPECT_EQ(s.stats.loaded, triangles) << name;
     EXPECT_EQ(s.stats.degenerate + s.stats.nonFinite, 0u) << name;
-    EXPECT_EQ(s.rootNode().mesh.colors[0], kDefaultMeshColor) << name;
+    EXPECT_EQ(s.rootNode().mesh.color(0), kDefaultMeshColor) << name;
     EXPECT_NEAR(s.bounds().hi.x, 1.0, 1e-9) << name;
     EXPECT_EQ(s.source, (dir.path() / name).string());
   }
@@ -67,6 +67,7 @@ TEST(MeshFile, EqualCornersAreStoredOnceWhateverTheFilesIndexing) {
     ASSERT_EQ(m.size(), 2u) << name;
     EXPECT_EQ(m.positions.size(), 4u) << name;
     EXPECT_EQ(m.vertex(1, 1), glm::vec3(1, 1, 0)) << name;
+    EXPECT_EQ(m.colors.size(), 1u) << "one colour for the whole mesh: " << name;
   }
 }
 
@@ -92,7 +93,7 @@ TEST(MeshFile, MaterialVertexAndOverrideColours) {
   ScratchDir dir;
   dir.write("red.mtl", "newmtl red\nKd 1 0 0\n");
   const Scene obj = load(dir.write("red.obj", "mtllib red.mtl\nusemtl red\n" + kQuadObj));
-  EXPECT_EQ(obj.rootNode().mesh.colors[0], packRgba8(255, 0, 0));
+  EXPECT_EQ(obj.rootNode().mesh.color(0), packRgba8(255, 0, 0));
 
   const Scene ply = load(
       dir.write("green.ply",
@@ -100,11 +101,11 @@ TEST(MeshFile, MaterialVertexAndOverrideColours) {
                 "property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
                 "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
                 "0 0 0 0 255 0\n1 0 0 0 255 0\n0 1 0 0 255 0\n3 0 1 2\n"));
-  EXPECT_EQ(ply.rootNode().mesh.colors[0], packRgba8(0, 255, 0));
+  EXPECT_EQ(ply.rootNode().mesh.color(0), packRgba8(0, 255, 0));
 
   Scene scene;
   scene.root = addMeshFile(scene, dir.path() / "red.obj", packRgba8(1, 2, 3));
-  EXPECT_EQ(scene.nodes[scene.root].mesh.colors[1], packRgba8(1, 2, 3));
+  EXPECT_EQ(scene.nodes[scene.root].mesh.color(1), packRgba8(1, 2, 3));
 }
 
 TEST(MeshFile, BinaryStl) {

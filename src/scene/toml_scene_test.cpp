@@ -81,7 +81,7 @@ TEST(TomlScene, NestedInstances) {
   // Colour override on every tetrahedron triangle.
   const auto first = s.resolve(0);
   ASSERT_TRUE(first.has_value());
-  EXPECT_EQ(s.nodes[first->node].mesh.colors[first->triangle], packRgba8(255, 0, 0));
+  EXPECT_EQ(s.nodes[first->node].mesh.color(first->triangle), packRgba8(255, 0, 0));
   // Triangle 4 is the second tet of the first pair: scaled by 2, moved by 10.
   const auto scaled = s.resolve(4);
   ASSERT_TRUE(scaled.has_value());

@@ -310,7 +310,7 @@ class CellMerger {
 
   bool similar(const Candidate& c, const Candidate& rep) const {
     return glm::dot(mesh_.normal(c.triangle), mesh_.normal(rep.triangle)) >= cosSplit_ &&
-           coloursClose(mesh_.colors[c.triangle], mesh_.colors[rep.triangle]);
+           coloursClose(mesh_.color(c.triangle), mesh_.color(rep.triangle));
   }
 
   // A surfel: the members' weighted mean normal and colour, at the representative's sample.
@@ -319,7 +319,7 @@ class CellMerger {
     double w = 0.0;
     for (const Candidate* c : members) {
       n += double(c->weight) * glm::dvec3(mesh_.normal(c->triangle));
-      colour += double(c->weight) * rgb(mesh_.colors[c->triangle]);
+      colour += double(c->weight) * rgb(mesh_.color(c->triangle));
       w += double(c->weight);
     }
     // Opposite normals cancel (a sheet seen from both sides, merged by --collisions average):

@@ -24,7 +24,6 @@ void addSoup(Mesh& m, size_t count, float extent, float size, uint32_t seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<float> pos(-0.5f * extent, 0.5f * extent), off(-size, size);
   m.positions.reserve(3 * count);
-
   m.colors.reserve(count);
   while (m.size() < count) {
     const glm::vec3 c(pos(rng), pos(rng), pos(rng));
