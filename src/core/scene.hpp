@@ -1,11 +1,11 @@
 #pragma once
 // The scene model: what a scene requires and nothing more.
 //
-// A Node owns triangles (positions and one colour each; the normal is derived from the positions)
-// and references other nodes
-// through Instances (node index + affine transform, never a copy). The graph is a DAG rooted at
-// Scene::root. Mesh positions are float in the node's own frame; transforms are double, so a
-// mesh far from the origin is stored recentred and placed by a double-precision translation.
+// A Node owns triangles (indexed vertices and a colour; the normal is derived from the positions)
+// and references other nodes through Instances (node index + affine transform, never a copy).
+// The graph is a DAG rooted at Scene::root. Mesh positions are float in the node's own frame;
+// transforms are double, so a mesh far from the origin is stored recentred and placed by a
+// double-precision translation.
 //
 // Triangle IDs ("expanded IDs") number every triangle of the fully instanced scene: a node's
 // expanded list is its own triangles [0, n) followed by the expanded lists of its instances in
@@ -37,8 +37,7 @@ constexpr uint64_t kMaxExpandedTriangles = uint64_t(1) << 62;
 
 // The unit geometric normal of a triangle, normalize(cross(b - a, c - a)) worked out in double (so
 // triangles at 1e-20 scale keep one) and rounded to float: the one definition every method shades
-// and culls with, derived on use rather than stored.
-// Inline: shading derives one for every pixel.
+// and culls with, derived on use rather than stored (inline: shading derives one a pixel).
 inline glm::vec3 triangleNormal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
   const glm::dvec3 n = glm::cross(glm::dvec3(b) - glm::dvec3(a), glm::dvec3(c) - glm::dvec3(a));
   const double len = glm::length(n);

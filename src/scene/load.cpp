@@ -1,6 +1,6 @@
 #include "src/scene/load.hpp"
 
-#include <malloc.h>
+#include <malloc.h>  // malloc_trim (glibc)
 
 #include <algorithm>
 #include <cctype>
