@@ -63,7 +63,8 @@ TEST(MeshFile, EqualCornersAreStoredOnceWhateverTheFilesIndexing) {
       "vertex 0 1 0\nendloop\nendfacet\nendsolid q\n";
   for (const auto& [name, text] :
        std::vector<std::pair<std::string, std::string>>{{"q.obj", kQuadObj}, {"q.stl", stl}}) {
-    const Mesh& m = load(dir.write(name, text)).rootNode().mesh;
+    const Scene s = load(dir.write(name, text));
+    const Mesh& m = s.rootNode().mesh;
     ASSERT_EQ(m.size(), 2u) << name;
     EXPECT_EQ(m.positions.size(), 4u) << name;
     EXPECT_EQ(m.vertex(1, 1), glm::vec3(1, 1, 0)) << name;
