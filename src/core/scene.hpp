@@ -58,7 +58,7 @@ struct Mesh {
 
   size_t size() const { return indices.size() / 3; }
   bool empty() const { return indices.empty(); }
-  Rgba8 color(size_t tri) const { return colors[colors.size() == 1 ? 0 : tri]; }
+  const Rgba8& color(size_t tri) const { return colors[colors.size() == 1 ? 0 : tri]; }
   // Keeps one colour when every triangle has the same (4 bytes a triangle less); adding
   // triangles later spreads it back.
   void uniformColors();

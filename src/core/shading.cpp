@@ -60,7 +60,7 @@ void prefetchAhead(const Scene& scene, const Placement& p, const Framebuffer& fb
     if (id < p.base || id >= p.end) return;
     const uint32_t* c = &mesh.indices[3 * (id - p.base)];
     for (int k = 0; k < 3; ++k) prefetchRead(&mesh.positions[c[k]]);
-    prefetchRead(&mesh.colors[mesh.colors.size() == 1 ? 0 : id - p.base]);
+    prefetchRead(&mesh.color(id - p.base));
   }
 }
 
