@@ -134,26 +134,25 @@ class PartRenderer : public Renderer {
   void render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
               FrameStats& stats) override {
     probeTogether(camera, share, stats);
-    bool first = true;
+    if (inner_.size() == 1) {
+      if (inner_[0]) renderOnePart(camera, frame, fb, stats);
+      return;
+    }
+    owner_.assign(fb.size(), kNoOwner);
+    local_.resize(fb.size());
     for (size_t p = 0; p < inner_.size(); ++p) {
       if (!inner_[p]) continue;  // an empty part
-      // The first part draws into the cleared frame, the others beside it.
-      Framebuffer& into = first ? fb : scratch(fb);
+      Framebuffer& into = scratch(fb);
       FrameStats own;
       inner_[p]->render(camera, frame, WorkShare{0, 1}, into, own);
       addStagesAndCounts(own, stats);
-      // One part of all the rank's regions: its figures are the frame's.
-      if (held_.layout == Parts::kOne) stats.shared = own.shared;
       Stopwatch clock;
-      toWholeScene(*inner_[p], held_.parts[p], camera, into);
-      stats.addStage("shade", clock.seconds());
-      if (!first) {
-        clock = Stopwatch();
-        compositeNearer(fb, into);
-        stats.addStage("composite regions", clock.seconds());
-      }
-      first = false;
+      keepNearerOfPart(uint32_t(p), into, fb);
+      stats.addStage("composite regions", clock.seconds());
     }
+    Stopwatch clock;
+    shadeWinners(camera, fb);
+    stats.addStage("shade", clock.seconds());
   }
 
   bool colourFromIds() const override { return false; }
@@ -214,13 +213,55 @@ class PartRenderer : public Renderer {
     }
     stats.addStage("probe", clock.seconds());
   }
-  // The part's IDs name its own triangles: shade first, then renumber.
-  static void toWholeScene(const Renderer& inner, const ScenePart& part, const Camera& camera,
-                           Framebuffer& fb) {
-    if (inner.colourFromIds()) shadeFromIds(part.scene, camera, fb);
+  // A rank's one part draws into its frame. Its IDs name its own triangles: shade first, then
+  // renumber.
+  void renderOnePart(const Camera& camera, int frame, Framebuffer& fb, FrameStats& stats) {
+    FrameStats own;
+    inner_[0]->render(camera, frame, WorkShare{0, 1}, fb, own);
+    addStagesAndCounts(own, stats);
+    // One part of all the rank's regions: its figures are the frame's.
+    if (held_.layout == Parts::kOne) stats.shared = own.shared;
+    Stopwatch clock;
+    if (inner_[0]->colourFromIds()) shadeFromIds(held_.parts[0].scene, camera, fb);
+    const IdMap& ids = held_.parts[0].ids;
     const long n = long(fb.id.size());
 #pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i) fb.id[size_t(i)] = part.ids.global(fb.id[size_t(i)]);
+    for (long i = 0; i < n; ++i) fb.id[size_t(i)] = ids.global(fb.id[size_t(i)]);
+    stats.addStage("shade", clock.seconds());
+  }
+  // Part p's frame composited into the rank's by the whole scene's IDs; the winner's part and
+  // own ID are kept for shading once at the end (not every part's whole frame).
+  void keepNearerOfPart(uint32_t p, const Framebuffer& into, Framebuffer& fb) {
+    const IdMap& ids = held_.parts[p].ids;
+    const long n = long(fb.size());
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) {
+      const size_t i = size_t(k);
+      if (!into.covered(i)) continue;
+      const uint64_t id = ids.global(into.id[i]);
+      if (!nearer(into.depth[i], id, fb.depth[i], fb.id[i])) continue;
+      fb.depth[i] = into.depth[i];
+      fb.id[i] = id;
+      fb.color[i] = into.color[i];
+      owner_[i] = p;
+      local_[i] = into.id[i];
+    }
+  }
+  // Each pixel shaded by the part that won it (parts bringing their own colour keep it).
+  void shadeWinners(const Camera& camera, Framebuffer& fb) {
+    std::vector<uint32_t> start(inner_.size() + 1, 0);
+    for (uint32_t o : owner_)
+      if (o != kNoOwner) ++start[o + 1];
+    for (size_t p = 0; p < inner_.size(); ++p) start[p + 1] += start[p];
+    pixels_.resize(start.back());
+    std::vector<uint32_t> next(start.begin(), start.end() - 1);
+    for (size_t i = 0; i < owner_.size(); ++i)
+      if (owner_[i] != kNoOwner) pixels_[next[owner_[i]]++] = uint32_t(i);
+    for (size_t p = 0; p < inner_.size(); ++p)
+      if (inner_[p] && inner_[p]->colourFromIds())
+        shadePixels(held_.parts[p].scene, camera,
+                    std::span(pixels_).subspan(start[p], start[p + 1] - start[p]), local_,
+                    fb.color);
   }
   static void addStagesAndCounts(const FrameStats& from, FrameStats& to) {
     for (const auto& [name, seconds] : from.stageSeconds) to.addStage(name, seconds);
@@ -234,10 +275,15 @@ class PartRenderer : public Renderer {
     return scratch_;
   }
 
+  static constexpr uint32_t kNoOwner = ~uint32_t(0);
+
   const HeldShare& held_;
   std::vector<std::unique_ptr<Renderer>> inner_;
   std::string method_;
   Framebuffer scratch_;
+  std::vector<uint32_t> owner_;   // the part that won each pixel
+  std::vector<uint64_t> local_;   // that part's own ID there
+  std::vector<uint32_t> pixels_;  // the pixels grouped by owner
 };
 
 }  // namespace

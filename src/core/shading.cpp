@@ -47,34 +47,27 @@ Rgba8 shadePlaced(const Scene& scene, const Placement& p, uint32_t triangle, con
 
 // Sub-pixel triangles are shaded once each from scattered indices and vertices: their triangle
 // indices are fetched 16 pixels ahead, their corners and colour 8 ahead (within the placement).
-void prefetchAhead(const Scene& scene, const Placement& p, const Framebuffer& fb, long i, long n) {
+template <class IdAt>
+void prefetchAhead(const Scene& scene, const Placement& p, const IdAt& idAt, long k, long n) {
   constexpr long kIndices = 16, kCorners = 8;
   if (p.end <= p.base) return;
   const Mesh& mesh = scene.nodes[p.node].mesh;
-  if (i + kIndices < n) {
-    const uint64_t id = fb.id[size_t(i + kIndices)];
+  if (k + kIndices < n) {
+    const uint64_t id = idAt(k + kIndices);
     if (id >= p.base && id < p.end) prefetchRead(&mesh.indices[3 * (id - p.base)]);
   }
-  if (i + kCorners < n) {
-    const uint64_t id = fb.id[size_t(i + kCorners)];
+  if (k + kCorners < n) {
+    const uint64_t id = idAt(k + kCorners);
     if (id < p.base || id >= p.end) return;
     const uint32_t* c = &mesh.indices[3 * (id - p.base)];
-    for (int k = 0; k < 3; ++k) prefetchRead(&mesh.positions[c[k]]);
+    for (int j = 0; j < 3; ++j) prefetchRead(&mesh.positions[c[j]]);
     prefetchRead(&mesh.color(id - p.base));
   }
 }
 
-}  // namespace
-
-Rgba8 shadeTriangle(const Scene& scene, uint32_t node, uint32_t triangle, const glm::dmat4& transform,
-                    const glm::dvec3& eye) {
-  Placement p;
-  p.set(node, transform);
-  return shadePlaced(scene, p, triangle, Lighting(scene, eye));
-}
-
-void shadeFromIds(const Scene& scene, const Camera& camera, Framebuffer& fb) {
-  const long n = long(fb.size());
+// The one shading loop: n pixels, the k-th showing idAt(k), its colour handed to put(k, c).
+template <class IdAt, class Put>
+void shadeEach(const Scene& scene, const Camera& camera, long n, const IdAt& idAt, const Put& put) {
   const Lighting lighting(scene, camera.position());
 #pragma omp parallel
   {
@@ -84,11 +77,11 @@ void shadeFromIds(const Scene& scene, const Camera& camera, Framebuffer& fb) {
     Rgba8 lastColor = kBackground;
     Placement placement;
 #pragma omp for schedule(static)
-    for (long i = 0; i < n; ++i) {
-      prefetchAhead(scene, placement, fb, i, n);
-      const uint64_t id = fb.id[size_t(i)];
+    for (long k = 0; k < n; ++k) {
+      prefetchAhead(scene, placement, idAt, k, n);
+      const uint64_t id = idAt(k);
       if (id == kNoId) {
-        fb.color[size_t(i)] = kBackground;
+        put(k, kBackground);
         continue;
       }
       if (id != lastId) {
@@ -97,7 +90,7 @@ void shadeFromIds(const Scene& scene, const Camera& camera, Framebuffer& fb) {
           if (!ref) {
             lastId = id;
             lastColor = kBackground;
-            fb.color[size_t(i)] = lastColor;
+            put(k, lastColor);
             continue;
           }
           placement.set(ref->node, ref->transform);
@@ -107,9 +100,36 @@ void shadeFromIds(const Scene& scene, const Camera& camera, Framebuffer& fb) {
         lastColor = shadePlaced(scene, placement, uint32_t(id - placement.base), lighting);
         lastId = id;
       }
-      fb.color[size_t(i)] = lastColor;
+      put(k, lastColor);
     }
   }
+}
+
+}  // namespace
+
+Rgba8 shadeTriangle(const Scene& scene, uint32_t node, uint32_t triangle,
+                    const glm::dmat4& transform, const glm::dvec3& eye) {
+  Placement p;
+  p.set(node, transform);
+  return shadePlaced(scene, p, triangle, Lighting(scene, eye));
+}
+
+void shadeFromIds(const Scene& scene, const Camera& camera, Framebuffer& fb) {
+  const uint64_t* ids = fb.id.data();
+  Rgba8* colors = fb.color.data();
+  shadeEach(
+      scene, camera, long(fb.size()), [ids](long i) { return ids[i]; },
+      [colors](long i, Rgba8 c) { colors[i] = c; });
+}
+
+void shadePixels(const Scene& scene, const Camera& camera, std::span<const uint32_t> pixels,
+                 std::span<const uint64_t> ids, std::span<Rgba8> colors) {
+  const uint32_t* at = pixels.data();
+  const uint64_t* id = ids.data();
+  Rgba8* out = colors.data();
+  shadeEach(
+      scene, camera, long(pixels.size()), [at, id](long k) { return id[at[k]]; },
+      [at, out](long k, Rgba8 c) { out[at[k]] = c; });
 }
 
 }  // namespace lzb
