@@ -15,10 +15,13 @@ And the hybrid's stages on 2 ranks x 1 thread, replicated, in data mode, and in 
 by local z-buffering every frame (--frame-way local), alone and with a static plane (--plane 0.2):
 where the data-mode frame goes.
 
-Usage: python3 runs/distribute/run.py [--quick] [--composite | --stages]   (from the repository
-       root, after scripts/build.sh; --composite, --stages: that part alone)
+Then the city (builtin:city, instanced) at 640x480 and 1920x1080 for raycast, the hybrid and
+lzb: 1 x 2 and 2 x 1 replicated, 2 x 1 and 4 x 1 in data mode (12 frames, the first dropped).
+
+Usage: python3 runs/distribute/run.py [--quick] [--composite | --stages | --city]   (from the
+       repository root, after scripts/build.sh; --composite, --stages, --city: that part alone)
 Writes runs/distribute/ranks.csv (one row per configuration and rank), capacity.csv,
-composite.csv and stages.csv.
+composite.csv, stages.csv and city.csv.
 """
 import filecmp
 import json
@@ -31,7 +34,7 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402
 
-common.accept_args(flags=("--quick", "--composite", "--stages"))
+common.accept_args(flags=("--quick", "--composite", "--stages", "--city"))
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 QUICK = "--quick" in sys.argv
@@ -189,7 +192,46 @@ def stages_study():
                       "every_pixel_cast", *sorted(stages)], commands)
 
 
+# The city (instanced: every rank holds the buildings its regions place) at both sizes.
+CITY_SIZES = [(640, 480), (1920, 1080)]
+CITY_CONFIGS = [(1, 2, "replicate"), (2, 1, "replicate"), (2, 1, "data"), (4, 1, "data")]
+CITY_METHODS = ["raycast", "hybrid", "lzb"]
+
+
+def city_study():
+    """The city at 640x480 and 1920x1080, replicated and in data mode: median frame, its shade
+    and composite stages, peak memory a rank."""
+    rows, commands = [], []
+    frames = 4 if QUICK else 12
+    for width, height in CITY_SIZES:
+        for method in CITY_METHODS:
+            for ranks, threads, mode in CITY_CONFIGS:
+                shown, rep = common.render(
+                    "builtin:city", ["--method", method, "--frames", str(frames), "--distribute",
+                                     mode, "--width", str(width), "--height", str(height)],
+                    ranks=ranks, threads=threads)
+                commands.append(shown)
+                kept = rep["frames"][1:]
+                stage = lambda name: round(1000 * common.median(  # noqa: E731
+                    f["stages"].get(name, 0.0) for f in kept), 2)
+                rows.append({"size": f"{width}x{height}", "method": method, "mode": mode,
+                             "ranks": ranks, "threads": threads,
+                             "frame_ms": round(1000 * common.median(f["seconds"] for f in kept), 1),
+                             "shade_ms": stage("shade"), "composite_ms": stage("composite"),
+                             "regions_ms": stage("composite regions"),
+                             "peak_mib": round(max(r["peak_memory_bytes"] for f in rep["frames"]
+                                                   for r in f["ranks"]) / 2**20),
+                             "load_s": round(rep["load_seconds"], 2)})
+                print(rows[-1], flush=True)
+    common.write_csv(os.path.join(HERE, "city.csv"), rows,
+                     ["size", "method", "mode", "ranks", "threads", "frame_ms", "shade_ms",
+                      "composite_ms", "regions_ms", "peak_mib", "load_s"], commands)
+
+
 def main():
+    if "--city" in sys.argv:
+        city_study()
+        return
     if "--composite" in sys.argv:
         composite_study()
         return
@@ -202,6 +244,7 @@ def main():
         capacity_study(work)
         composite_study()
         stages_study()
+        city_study()
     finally:
         shutil.rmtree(work, ignore_errors=True)
 

@@ -69,9 +69,9 @@ PartOf partOfRank(std::span<const glm::dvec3> centres, std::span<const uint64_t>
                   HeldShare& held, const WorkShare& share, Parts layout);
 
 // A renderer of a rank's parts, wrapping one renderer per part (`inner[p]` made on
-// held.parts[p].scene; none for an empty part): it renders the whole frame of each part, shades
-// it, maps its IDs to the whole scene's and composites the parts by depth. Its set-up reports the
-// regions and triangles this rank holds.
+// held.parts[p].scene; none for an empty part): it renders the whole frame of each part,
+// composites the parts by depth with the whole scene's IDs, then shades each pixel once by the
+// part that won it. Its set-up reports the regions and triangles this rank holds.
 std::unique_ptr<Renderer> makePartRenderer(const HeldShare& held,
                                            std::vector<std::unique_ptr<Renderer>> inner,
                                            const std::string& method);
