@@ -18,7 +18,8 @@ constexpr Rgba8 kLight = packRgba8(225, 222, 210);
 // m x m squares of side s in the y = 0 plane, centred at the origin, square (0, 0) dark.
 void addSquares(Mesh& mesh, LoadStats& stats, int64_t m, double s) {
   MeshBuilder builder(mesh, stats);
-  mesh.positions.reserve(size_t(6 * m * m));
+  mesh.positions.reserve(size_t((m + 1) * (m + 1)));  // the squares share their corners
+  mesh.indices.reserve(size_t(6 * m * m));
   mesh.colors.reserve(size_t(2 * m * m));
   const double half = 0.5 * double(m) * s;
   for (int64_t j = 0; j < m; ++j)

@@ -112,7 +112,8 @@ Generated generateLandscape(Scene& scene, BuiltinParams& params) {
   Generated out;
   out.root = scene.addNode("landscape");
   Mesh& mesh = scene.nodes[out.root].mesh;
-  mesh.positions.reserve(3 * land.triangles());
+  mesh.positions.reserve(land.triangles());  // shared corners: 0.65 a triangle measured
+  mesh.indices.reserve(3 * land.triangles());
   mesh.colors.reserve(land.triangles());
   MeshBuilder builder(mesh, scene.stats);
   addTerrain(builder, land.terrain);
