@@ -38,7 +38,7 @@ def builds():
 
 def measure(scene, label, method, binary, rows, commands):
     shown, rep = common.render(scene, ["--method", method, "--frames", "3"], threads=2, lzb=binary)
-    commands.append(shown if binary is None else shown.replace(binary, BEFORE))
+    commands.append(shown)
     tris = rep["scene"]["triangles_unique"]
     peak = rep["summary"]["peak_memory_bytes_root"]
     row = {"scene": label, "build": "", "method": method, "unique_triangles": tris,
