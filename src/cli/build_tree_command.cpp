@@ -38,7 +38,7 @@ namespace {
 
 constexpr double kMaxMemMb = 1048576.0;  // 1 TiB
 
-// The scene as a stream: a streaming generator regenerates it on every pass and a binary PLY
+// The scene as a stream: a streaming generator regenerates it on every pass and a PLY
 // file is read again on every pass, neither held whole (src/scene/chunked_scene.hpp); any other
 // scene is loaded and its expanded triangles streamed.
 struct SceneInput {

@@ -63,7 +63,7 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
                "group) holds only its regions' triangles and renders the whole frame of them, "
                "and the frames are composited by depth (methods other than zbuffer and raycast "
                "render each region apart: the same --regions give the same image on any number "
-               "of ranks) | auto: data when a binary PLY or builtin:landscape would not fit "
+               "of ranks) | auto: data when a PLY or builtin:landscape would not fit "
                "replicated in some rank's memory (estimated), else replicate")
       ->capture_default_str();
   c.add_option("--regions", a.regions,

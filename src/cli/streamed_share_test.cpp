@@ -1,4 +1,4 @@
-// A rank's share streamed from a binary PLY (near the origin and recentred far from it) or
+// A rank's share streamed from a binary or ASCII PLY (near the origin and recentred far from it) or
 // generated (builtin:landscape) is the share cut from the loaded scene: the same regions, units,
 // IDs, world triangles, colours, normals and node boxes, and the same outline.
 #include "src/cli/streamed_share.hpp"
@@ -77,12 +77,14 @@ void expectStreamedEqualsCut(const std::string& spec) {
 
 TEST(StreamedShare, APlyFileStreamedGivesTheShareCutFromTheLoadedScene) {
   const test::ScratchDir dir;
-  expectStreamedEqualsCut(test::polygonMesh(false, 0.0, 12).write(dir.path() / "near.ply"));
+  for (const auto encoding : {test::PlyEncoding::kLittleEndian, test::PlyEncoding::kAscii})
+    expectStreamedEqualsCut(test::polygonMesh(encoding, 0.0, 12).write(dir.path() / "near.ply"));
 }
 
 TEST(StreamedShare, AFarPlyFileIsSplitThroughItsRecentredNode) {
   const test::ScratchDir dir;
-  const std::string far = test::polygonMesh(true, 1e7, 12).write(dir.path() / "far.ply");
+  const std::string far =
+      test::polygonMesh(test::PlyEncoding::kBigEndian, 1e7, 12).write(dir.path() / "far.ply");
   const Scene whole = loadScene(far, true);
   ASSERT_NE(whole.rootNode().instances.size(), 0u) << "the loader recentres it";
   const SceneUnits units = sceneUnits(whole, 4);

@@ -1,8 +1,8 @@
-// A binary PLY file streamed (src/scene/ply_stream.hpp through MeshChunkStream) gives the
-// triangles the loaded scene streams (SceneStream of loadScene), bit for bit: polygons split,
-// vertex colours averaged, degenerate and non-finite faces dropped, far geometry recentred, in
-// either byte order; malformed files are refused naming the file, and files the loader reads
-// otherwise are left to it.
+// A PLY file streamed (src/scene/ply_stream.hpp through MeshChunkStream) gives the triangles the
+// loaded scene streams (SceneStream of loadScene), bit for bit: polygons split, vertex colours
+// averaged, degenerate and non-finite faces dropped, far geometry recentred, in either byte order
+// and in ASCII; malformed files are refused naming the file, and files the loader reads otherwise
+// are left to it.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -25,6 +25,7 @@ namespace lzb::sampletree {
 namespace {
 
 namespace fs = std::filesystem;
+using test::PlyEncoding;
 using test::PlyFile;
 using test::polygonMesh;
 
@@ -66,7 +67,7 @@ void expectStreamedEqualsLoaded(const fs::path& file) {
 }
 
 TEST(PlyInput, PolygonsAndColoursStreamAsLoaded) {
-  const fs::path file = polygonMesh(false, 0.0).write(scratch("polygons.ply"));
+  const fs::path file = polygonMesh(PlyEncoding::kLittleEndian, 0.0).write(scratch("polygons.ply"));
   expectStreamedEqualsLoaded(file);
   std::string why;
   const auto ply = PlyMeshStream::open(file, why);
@@ -83,11 +84,11 @@ TEST(PlyInput, PolygonsAndColoursStreamAsLoaded) {
 }
 
 TEST(PlyInput, BigEndianStreamsAsLoaded) {
-  expectStreamedEqualsLoaded(polygonMesh(true, 0.0).write(scratch("big.ply")));
+  expectStreamedEqualsLoaded(polygonMesh(PlyEncoding::kBigEndian, 0.0).write(scratch("big.ply")));
 }
 
 TEST(PlyInput, FarGeometryIsRecentredAsLoaded) {
-  const fs::path file = polygonMesh(false, 1e7).write(scratch("far.ply"));
+  const fs::path file = polygonMesh(PlyEncoding::kLittleEndian, 1e7).write(scratch("far.ply"));
   expectStreamedEqualsLoaded(file);
   std::string why;
   EXPECT_NE(PlyMeshStream::open(file, why)->placement(), glm::dmat4(1.0));
@@ -124,7 +125,7 @@ std::string refusal(const fs::path& file) {
 }
 
 TEST(PlyInput, MalformedFilesAreRefusedNamingTheFile) {
-  const PlyFile good = polygonMesh(false, 0.0, 6);
+  const PlyFile good = polygonMesh(PlyEncoding::kLittleEndian, 0.0, 6);
   for (const size_t cut : {size_t(0), size_t(100), good.data.size() / 2, good.data.size() - 20,
                            good.data.size() - 1}) {
     PlyFile f = good;
@@ -155,26 +156,68 @@ TEST(PlyInput, MalformedFilesAreRefusedNamingTheFile) {
   EXPECT_NE(refusal(scratch("missing.ply")).find("file not found"), std::string::npos);
 }
 
+// Why `file` is left to the loader ("" and a failure if it is streamed).
+std::string why(const fs::path& file) {
+  std::string reason;
+  EXPECT_EQ(PlyMeshStream::open(file, reason), nullptr) << file;
+  return reason;
+}
+
 // What the loader (assimp 5.2) reads otherwise, or this reader does not stream, is left to it.
 TEST(PlyInput, FilesTheLoaderReadsOtherwiseAreLeftToIt) {
-  const auto why = [](const fs::path& file) {
-    std::string reason;
-    EXPECT_EQ(PlyMeshStream::open(file, reason), nullptr) << file;
-    return reason;
-  };
-  const fs::path ascii = scratch("ascii.ply");
-  std::ofstream(ascii)
-      << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-         "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
-         "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-  EXPECT_NE(why(ascii).find("ASCII"), std::string::npos);
-  PlyFile comment = polygonMesh(false, 0.0, 4);
+  PlyFile comment = polygonMesh(PlyEncoding::kLittleEndian, 0.0, 4);
   comment.header.insert(comment.header.find("property double y"), "comment between properties\n");
   EXPECT_NE(why(comment.write(scratch("comment.ply"))).find("property line after"),
             std::string::npos);
-  PlyFile strips = polygonMesh(false, 0.0, 4);
+  PlyFile strips = polygonMesh(PlyEncoding::kLittleEndian, 0.0, 4);
   strips.header += "element tristrips 0\nproperty list int int vertex_indices\n";
   EXPECT_NE(why(strips.write(scratch("strips.ply"))).find("strips"), std::string::npos);
+}
+
+TEST(PlyInput, AsciiStreamsAsLoaded) {
+  expectStreamedEqualsLoaded(polygonMesh(PlyEncoding::kAscii, 0.0).write(scratch("text.ply")));
+  expectStreamedEqualsLoaded(polygonMesh(PlyEncoding::kAscii, 1e7).write(scratch("far_text.ply")));
+}
+
+// A small ASCII PLY written with its lines as given: after "end_header\n", `body`.
+fs::path asciiPly(const std::string& name, const std::string& body) {
+  const fs::path file = scratch(name);
+  std::ofstream(file, std::ios::binary)
+      << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+         "property double z\nproperty uchar red\nelement face 2\n"
+         "property list uchar int vertex_indices\nend_header\n"
+      << body;
+  return file;
+}
+
+// Line ends, spacing and number spellings that the loader reads as this reader does (123.456e2
+// reads as 12345.6006 there, not as strtof's 12345.5996).
+TEST(PlyInput, AsciiSpellingsStreamAsLoaded) {
+  expectStreamedEqualsLoaded(
+      asciiPly("crlf.ply", "0 0 0 9\r\n1 0 0 200\r\n1 1 0 3\r\n0 1 0 0\r\n3 0 1 2\r\n3 0 2 3\r\n"));
+  expectStreamedEqualsLoaded(asciiPly("spacing.ply",
+                                      "  0\t0  0 9 \n123.456e2 -0 .0 200\n+1 1. 1e-2 3\t\n"
+                                      "0 1 -1E+1 0\n3 0 1 2\n4\t0 1 2 3\n\n\r\n"));
+}
+
+// Where the loader could read other values (or lines), the file is left to it.
+TEST(PlyInput, AsciiTheLoaderMightReadOtherwiseIsLeftToIt) {
+  const std::string good = "0 0 0 9\n1 0 0 200\n1 1 0 3\n0 1 0 0\n3 0 1 2\n3 0 2 3\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {"0 0 0 9\n\n1 0 0 200\n1 1 0 3\n0 1 0 0\n3 0 1 2\n3 0 2 3\n", "blank line"},
+      {"0 0 0 9 1\n1 0 0 200\n1 1 0 3\n0 1 0 0\n3 0 1 2\n3 0 2 3\n", "more values"},
+      {"0 0 0\n1 0 0 200\n1 1 0 3\n0 1 0 0\n3 0 1 2\n3 0 2 3\n", "fewer values"},
+      {"0 0 0x 9\n1 0 0 200\n1 1 0 3\n0 1 0 0\n3 0 1 2\n3 0 2 3\n", "'0x'"},
+      {"0 0 0 9.5\n1 0 0 200\n1 1 0 3\n0 1 0 0\n3 0 1 2\n3 0 2 3\n", "'9.5'"},
+      {"0 0 0 9\n1 0 0 4294967296\n1 1 0 3\n0 1 0 0\n3 0 1 2\n3 0 2 3\n", "4294967296"},
+      {"0 0 0 9\r1 0 0 200\n1 1 0 3\n0 1 0 0\n3 0 1 2\n3 0 2 3\n", "carriage return"},
+      {good + "7\n", "after the last element"},
+      {good.substr(0, good.size() - 1), "without a line end"},
+  };
+  for (const auto& [body, reason] : cases)
+    EXPECT_NE(why(asciiPly("otherwise.ply", body)).find(reason), std::string::npos) << body;
+  EXPECT_NE(refusal(asciiPly("short.ply", good.substr(0, good.find("3 0 1 2")))).find("truncated"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 #pragma once
-// A scene read as chunks of one node's triangles, never whole: a binary PLY streamed from its file
+// A scene read as chunks of one node's triangles, never whole: a PLY streamed from its file
 // (ply_stream.hpp) or builtin:landscape generated (builtin.hpp). Every pass hands out the
 // triangles loadScene makes of the scene, in its ID order, in the node's stored frame; the loaded
 // scene holds them in its root or, for a file stored recentred, in the node its root's one

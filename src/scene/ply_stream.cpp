@@ -11,6 +11,7 @@
 #include "src/scene/mesh_builder.hpp"
 #include "src/scene/mesh_faces.hpp"
 #include "src/scene/mesh_file.hpp"
+#include "src/scene/ply_text_reader.hpp"
 
 namespace lzb {
 
@@ -26,6 +27,8 @@ constexpr uint64_t kMaxCount = 0xffffffffu;  // assimp counts elements in 32 bit
 // InputError naming the element being read.
 class PlyReader {
  public:
+  static constexpr bool kBinary = true;
+
   PlyReader(const std::filesystem::path& path, const std::string& where, uint64_t offset, bool big)
       : where_(where), big_(big), buffer_(kReadBuffer) {
     file_ = std::fopen(path.c_str(), "rb");
@@ -70,6 +73,8 @@ class PlyReader {
     }
     return 0.0;
   }
+  void skip(PlyType t, uint64_t n) { skip(n * uint64_t(plyTypeBytes(t))); }
+  void finish() {}  // what follows the elements is not read
   void skip(uint64_t n) {
     if (n <= len_ - pos_) {
       pos_ += size_t(n);
@@ -142,9 +147,9 @@ void vertexRole(const PlyProperty& p, int i, Layout& l) {
 
 // The layout, or why the file is left to the loader.
 std::string layoutOf(const PlyHeader& h, Layout& l, const std::string& where) {
-  if (h.format == "ascii") return "an ASCII PLY";
-  require(h.format == "binary_little_endian" || h.format == "binary_big_endian", where,
-          "unknown PLY format '" + h.format + "'");
+  require(
+      h.format == "ascii" || h.format == "binary_little_endian" || h.format == "binary_big_endian",
+      where, "unknown PLY format '" + h.format + "'");
   if (!h.quirk.empty()) return h.quirk;
   int vertices = 0, faces = 0;
   for (size_t e = 0; e < h.elements.size(); ++e) {
@@ -196,7 +201,8 @@ float normalisedColour(double v, PlyType t) {
 }
 
 // A list's count (signed counts must not be negative).
-uint64_t listCount(PlyReader& in, const PlyProperty& p, const std::string& where, uint64_t i) {
+template <class Reader>
+uint64_t listCount(Reader& in, const PlyProperty& p, const std::string& where, uint64_t i) {
   const double n = in.scalar(p.countType);
   require(n >= 0.0, where, [&] {
     return "malformed: PLY list '" + p.name + "' of element " + std::to_string(i) +
@@ -205,23 +211,28 @@ uint64_t listCount(PlyReader& in, const PlyProperty& p, const std::string& where
   return uint64_t(n);
 }
 
-void skipProperty(PlyReader& in, const PlyProperty& p, const std::string& where, uint64_t i) {
-  if (!p.list) return in.skip(uint64_t(plyTypeBytes(p.type)));
-  in.skip(listCount(in, p, where, i) * uint64_t(plyTypeBytes(p.type)));
+template <class Reader>
+void skipProperty(Reader& in, const PlyProperty& p, const std::string& where, uint64_t i) {
+  in.skip(p.type, p.list ? listCount(in, p, where, i) : 1);
 }
 
-void skipElement(PlyReader& in, const PlyElement& e, const std::string& where) {
-  const bool fixed = std::none_of(e.properties.begin(), e.properties.end(),
-                                  [](const PlyProperty& p) { return p.list; });
+// An element of fixed size skipped in one seek.
+void skipFixed(PlyReader& in, const PlyElement& e, const std::string& where) {
+  uint64_t stride = 0;
+  for (const PlyProperty& p : e.properties) stride += uint64_t(plyTypeBytes(p.type));
   in.at(&e.name, 0, e.count);
-  if (fixed) {
-    uint64_t stride = 0;
-    for (const PlyProperty& p : e.properties) stride += uint64_t(plyTypeBytes(p.type));
-    require(stride == 0 || e.count <= (in.size() - in.offset()) / stride, where,
-            "truncated: PLY binary data too short for " + std::to_string(e.count) + " '" + e.name +
-                "' elements");
-    return in.skip(stride * e.count);
-  }
+  require(stride == 0 || e.count <= (in.size() - in.offset()) / stride, where,
+          "truncated: PLY binary data too short for " + std::to_string(e.count) + " '" + e.name +
+              "' elements");
+  in.skip(stride * e.count);
+}
+
+template <class Reader>
+void skipElement(Reader& in, const PlyElement& e, const std::string& where) {
+  if constexpr (Reader::kBinary)
+    if (std::none_of(e.properties.begin(), e.properties.end(),
+                     [](const PlyProperty& p) { return p.list; }))
+      return skipFixed(in, e, where);
   for (uint64_t i = 0; i < e.count; ++i) {
     in.at(&e.name, i, e.count);
     for (const PlyProperty& p : e.properties) skipProperty(in, p, where, i);
@@ -260,13 +271,29 @@ std::unique_ptr<PlyMeshStream> PlyMeshStream::open(const std::filesystem::path& 
       head[s->header_.dataStart] == '\n')
     why = "a first data byte that the loader takes for a line end";
   if (!why.empty()) return nullptr;
-  s->scan();
+  try {
+    s->binary() ? s->scan<PlyReader>() : s->scan<PlyTextReader>();
+  } catch (const NotStreamed& e) {
+    why = "an ASCII PLY with " + e.why;
+    return nullptr;
+  }
   return s;
 }
 
+template <>
+PlyReader PlyMeshStream::reader(uint64_t offset) const {
+  return PlyReader(path_, where_, offset, header_.format == "binary_big_endian");
+}
+
+template <>
+PlyTextReader PlyMeshStream::reader(uint64_t offset) const {
+  return PlyTextReader(path_, where_, offset);
+}
+
 // The first reading: every element in order, vertices kept, faces checked and counted.
+template <class Reader>
 void PlyMeshStream::scan() {
-  PlyReader in(path_, where_, header_.dataStart, header_.format == "binary_big_endian");
+  Reader in = reader<Reader>(header_.dataStart);
   const Layout& l = *layout_;
   for (size_t e = 0; e < header_.elements.size(); ++e) {
     const PlyElement& el = header_.elements[e];
@@ -280,12 +307,14 @@ void PlyMeshStream::scan() {
       skipElement(in, el, where_);
     }
   }
+  in.finish();
   require(stats_.loaded > 0, where_,
           "no valid triangles (" + std::to_string(stats_.degenerate) + " degenerate, " +
               std::to_string(stats_.nonFinite) + " non-finite dropped)");
 }
 
-void PlyMeshStream::readVertices(PlyReader& in, const PlyElement& el) {
+template <class Reader>
+void PlyMeshStream::readVertices(Reader& in, const PlyElement& el) {
   const Layout& l = *layout_;
   const bool coloured = std::any_of(l.rgba, l.rgba + 4, [](int i) { return i >= 0; });
   positions_.resize(size_t(el.count));
@@ -317,7 +346,8 @@ void PlyMeshStream::readVertices(PlyReader& in, const PlyElement& el) {
     placement_ = glm::dmat4(1.0) * glm::translate(glm::dmat4(1.0), origin_);
 }
 
-LoadStats PlyMeshStream::readFaces(PlyReader& in, const std::function<void(const Mesh&)>& out,
+template <class Reader>
+LoadStats PlyMeshStream::readFaces(Reader& in, const std::function<void(const Mesh&)>& out,
                                    size_t chunk) const {
   const PlyElement& el = header_.elements[layout_->face];
   const size_t indexAt = size_t(layout_->indices);
@@ -370,8 +400,18 @@ LoadStats PlyMeshStream::readFaces(PlyReader& in, const std::function<void(const
 }
 
 void PlyMeshStream::forEachChunk(const std::function<void(const Mesh&)>& out, size_t chunk) const {
-  PlyReader in(path_, where_, faceData_, header_.format == "binary_big_endian");
-  const LoadStats pass = readFaces(in, out, chunk);
+  LoadStats pass;
+  try {
+    if (binary()) {
+      PlyReader in = reader<PlyReader>(faceData_);
+      pass = readFaces(in, out, chunk);
+    } else {
+      PlyTextReader in = reader<PlyTextReader>(faceData_);
+      pass = readFaces(in, out, chunk);
+    }
+  } catch (const NotStreamed&) {
+    pass.loaded = ~uint64_t(0);  // the first reading found none: the file changed
+  }
   require(pass.loaded == stats_.loaded, where_, "changed while it was read");
 }
 

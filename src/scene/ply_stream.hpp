@@ -1,6 +1,7 @@
 #pragma once
-// A binary PLY mesh read for streaming, never whole: the vertex element is held (12 bytes a
-// vertex, 24 with colours), the faces are read from the file in chunks on every pass. The
+// A PLY mesh read for streaming, never whole: the vertex element is held (12 bytes a vertex, 24
+// with colours), the faces are read from the file in chunks on every pass. Binary files, and
+// ASCII ones where every value reads as the loader reads it (ply_text_reader.hpp). The
 // triangles, their order, colours and dropped ones are those `loadScene` makes of the file (the
 // same face rules, mesh_faces.hpp); so are the stored frame and its placement (recentred far
 // geometry). For the sample tree's external construction (src/sampletree/external_build.hpp).
@@ -17,16 +18,16 @@
 
 namespace lzb {
 
-class PlyReader;
-
 class PlyMeshStream {
  public:
   // Opens `path` and reads it once: the header, the vertices, every face checked and split (the
   // count of kept and dropped triangles), the elements after the faces checked for length.
   // Returns nullptr with `why` set for a file that the loader (assimp) reads otherwise than this
-  // reader would, or that it does not stream (ASCII, triangle strips, no faces...): the caller
+  // reader would, or that it does not stream (triangle strips, no faces, an ASCII value it cannot
+  // be sure to read as the loader does...): the caller
   // then loads it. Throws InputError naming the file for a missing, unreadable, truncated or
-  // malformed one (an index out of range, a face without vertices, no valid triangle).
+  // malformed one (an index out of range, a face without vertices, no valid triangle). An ASCII
+  // file is read whole once here, so a file left to the loader costs one more reading.
   static std::unique_ptr<PlyMeshStream> open(const std::filesystem::path& path, std::string& why);
 
   const std::string& where() const { return where_; }
@@ -47,11 +48,16 @@ class PlyMeshStream {
 
  private:
   PlyMeshStream() = default;
+  bool binary() const { return header_.format != "ascii"; }
+  template <class Reader>
   void scan();
-  void readVertices(PlyReader& in, const PlyElement& element);
+  template <class Reader>
+  void readVertices(Reader& in, const PlyElement& element);
   // Reads, checks and splits every face, handing out chunks; returns what was kept and dropped.
-  LoadStats readFaces(PlyReader& in, const std::function<void(const Mesh&)>& out,
-                      size_t chunk) const;
+  template <class Reader>
+  LoadStats readFaces(Reader& in, const std::function<void(const Mesh&)>& out, size_t chunk) const;
+  template <class Reader>
+  Reader reader(uint64_t offset) const;
 
   std::filesystem::path path_;
   std::string where_;

@@ -8,9 +8,9 @@
 
 namespace lzb::test {
 
-PlyFile polygonMesh(bool big, double offset, int n) {
+PlyFile polygonMesh(PlyEncoding encoding, double offset, int n) {
   PlyFile f;
-  f.big = big;
+  f.encoding = encoding;
   const int vertices = n * n;
   const int faces = (n - 1) * (n - 1);
   f.header = "comment polygons\nelement vertex " + std::to_string(vertices) +
@@ -32,6 +32,7 @@ PlyFile polygonMesh(bool big, double offset, int n) {
       f.put(uint8_t(rng())), f.put(uint8_t(rng())), f.put(uint8_t(rng()));
       f.put(uint8_t(i % 3));
       for (int k = 0; k < i % 3; ++k) f.put(int32_t(k));
+      f.endElement();
     }
   const auto at = [&](int i, int j) { return int32_t(j * n + i); };
   for (int j = 0; j + 1 < n; ++j)
@@ -61,8 +62,12 @@ PlyFile polygonMesh(bool big, double offset, int n) {
       for (int32_t v : poly) f.put(v);
       f.put(uint16_t(1));
       f.put(0.25f);
+      f.endElement();
     }
-  for (int e = 0; e < 4; ++e) f.put(int32_t(e));
+  for (int e = 0; e < 4; ++e) {
+    f.put(int32_t(e));
+    if (e % 2) f.endElement();
+  }
   return f;
 }
 

@@ -1,37 +1,56 @@
 #pragma once
-// Binary PLY files written value by value, in either byte order, and a polygon mesh that meets
-// every rule of the mesh loaders (the streaming reader's tests and the streamed scene's).
+// PLY files written value by value, binary in either byte order or ASCII, and a polygon mesh that
+// meets every rule of the mesh loaders (the streaming reader's tests and the streamed scene's).
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <type_traits>
 
 namespace lzb::test {
 
-// A PLY file written value by value in either byte order.
+enum class PlyEncoding { kLittleEndian, kBigEndian, kAscii };
+
+// A PLY file written value by value: binary, or ASCII with one element a line (endElement).
 struct PlyFile {
-  bool big = false;
+  PlyEncoding encoding = PlyEncoding::kLittleEndian;
   std::string header, data;
   template <class T>
   void put(T v) {
+    if (encoding == PlyEncoding::kAscii) return putText(v);
     char b[sizeof(T)];
     std::memcpy(b, &v, sizeof(T));
-    if (big) std::reverse(b, b + sizeof(T));
+    if (encoding == PlyEncoding::kBigEndian) std::reverse(b, b + sizeof(T));
     data.append(b, sizeof(T));
   }
+  void endElement() {
+    if (encoding == PlyEncoding::kAscii) data.back() = '\n';
+  }
   std::filesystem::path write(const std::filesystem::path& p) const {
-    std::ofstream(p, std::ios::binary)
-        << "ply\nformat " << (big ? "binary_big_endian" : "binary_little_endian") << " 1.0\n"
-        << header << "end_header\n"
-        << data;
+    const char* format[] = {"binary_little_endian", "binary_big_endian", "ascii"};
+    std::ofstream(p, std::ios::binary) << "ply\nformat " << format[int(encoding)] << " 1.0\n"
+                                       << header << "end_header\n"
+                                       << data;
     return p;
+  }
+
+ private:
+  template <class T>
+  void putText(T v) {
+    char b[40];
+    if constexpr (std::is_floating_point_v<T>)
+      std::snprintf(b, sizeof b, "%.*g ", sizeof(T) == 4 ? 9 : 17, double(v));
+    else
+      std::snprintf(b, sizeof b, "%lld ", static_cast<long long>(v));
+    data += b;
   }
 };
 
 // A jittered grid of coloured vertices (doubles, with properties to skip), faces of 1 to 6
 // vertices (lines, triangles, quads, concave pentagons, hexagons), repeated corners, a NaN vertex,
 // a colourless-property face list; `offset` moves it all (1e7: recentred by the loader).
-PlyFile polygonMesh(bool big, double offset, int n = 24);
+PlyFile polygonMesh(PlyEncoding encoding, double offset, int n = 24);
 
 }  // namespace lzb::test
