@@ -12,9 +12,9 @@ rank with a share draws only from it (the zbuffer's triangles drawn per rank sum
 replicated count) and, with 7 regions, every rank holds some. With 2 frame groups of 3 ranks,
 each group holds the whole scene. The hybrid's probe (whether to cast every pixel) must give the
 same choice and counts on every rank count.
-The landscape and two binary PLY files (the city exported, and a terrain far from the origin that
-the loader stores recentred) are streamed, each rank keeping only its triangles; the bunny (OFF)
-is loaded whole and cut.
+The landscape, two binary PLY files (the city exported, and a terrain far from the origin that
+the loader stores recentred) and the bunny (a scan's OFF) are streamed, each rank keeping only its
+triangles; the city generated is loaded whole and cut.
 
 usage: mpi_distribute.py LZB MPIEXEC WORK [DATA]
 """
@@ -69,7 +69,7 @@ def make_files(lzb, work):
 
 def scenes(work, data, method):
     """The exact methods' scenes; the others leave out the far terrain (the sample tree refuses
-    it) and the bunny (loaded whole and cut as the city is)."""
+    it) and the bunny (streamed as the PLY files are)."""
     files = [os.path.join(work, "city.ply")]
     if method not in EXACT:
         return SCENES + files

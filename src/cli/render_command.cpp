@@ -57,14 +57,15 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
                "frame-parallel batches: the ranks form this many groups, frame f goes to group f "
                "mod G, each group splits its frame; the first rank writes every frame")
       ->capture_default_str();
-  c.add_option("--distribute", a.distribute,
-               "replicate: every rank holds the whole scene | data: the scene is cut into "
-               "--regions spatial regions balanced by triangle count, each rank (of each frame "
-               "group) holds only its regions' triangles and renders the whole frame of them, "
-               "and the frames are composited by depth (methods other than zbuffer and raycast "
-               "render each region apart: the same --regions give the same image on any number "
-               "of ranks) | auto: data when a PLY or builtin:landscape would not fit "
-               "replicated in some rank's memory (estimated), else replicate")
+  c.add_option(
+       "--distribute", a.distribute,
+       "replicate: every rank holds the whole scene | data: the scene is cut into "
+       "--regions spatial regions balanced by triangle count, each rank (of each frame "
+       "group) holds only its regions' triangles and renders the whole frame of them, "
+       "and the frames are composited by depth (methods other than zbuffer and raycast "
+       "render each region apart: the same --regions give the same image on any number "
+       "of ranks) | auto: data when a PLY, OFF or OBJ file or builtin:landscape would not fit "
+       "replicated in some rank's memory (estimated), else replicate")
       ->capture_default_str();
   c.add_option("--regions", a.regions,
                "--distribute data: regions the scene is cut into, the same on any number of "

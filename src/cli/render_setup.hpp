@@ -45,7 +45,7 @@ struct RenderPlan {
 
 // Loads a.scene into `plan` (in place: renderers keep a reference to the scene) unless the method
 // holds the scene itself and no --reference needs it (the method's outline then stands for it);
-// under --distribute data, only the part of rank share.rank of its frame group (a PLY and
+// under --distribute data, only the part of rank share.rank of its frame group (PLY, OFF, OBJ and
 // builtin:landscape streamed, never held whole; the other scenes loaded whole and cut). Refuses
 // a scene or share whose estimated peak (memory_estimate.hpp) this rank cannot hold, before it
 // holds it where it can. Resolves the threads (useThreads), image size, clip planes and fov;
@@ -56,7 +56,7 @@ void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan,
               Distribution distribution = Distribution::kReplicate);
 
 // --distribute auto on this rank: whether the whole scene fits replicated. Only a streamed scene
-// (PLY, builtin:landscape) is known before it is read; the others are read whole in
+// (PLY, OFF, OBJ, builtin:landscape) is known before it is read; the others are read whole in
 // either mode, and fit as far as auto can tell.
 bool replicaFits(const RenderArgs& a);
 

@@ -1,5 +1,5 @@
 #pragma once
-// --distribute data without loading the whole scene: a scene read as chunks (a PLY,
+// --distribute data without loading the whole scene: a scene read as chunks (a PLY, OFF or OBJ,
 // builtin:landscape; src/scene/chunked_scene.hpp) is read twice. The first pass takes each
 // triangle's world centre (32 bytes a triangle of the whole scene, freed before the second pass)
 // and cuts the regions from them as holdShare cuts the loaded scene's; the second keeps the

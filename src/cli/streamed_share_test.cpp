@@ -1,6 +1,7 @@
-// A rank's share streamed from a binary or ASCII PLY (near the origin and recentred far from it) or
-// generated (builtin:landscape) is the share cut from the loaded scene: the same regions, units,
-// IDs, world triangles, colours, normals and node boxes, and the same outline.
+// A rank's share streamed from a PLY (binary or ASCII), OFF or OBJ file (near the origin and
+// recentred far from it) or generated (builtin:landscape) is the share cut from the loaded scene:
+// the same regions, units, IDs, world triangles, colours, normals and node boxes, and the same
+// outline.
 #include "src/cli/streamed_share.hpp"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include "src/scene/load.hpp"
 #include "tests/support/files.hpp"
 #include "tests/support/ply_files.hpp"
+#include "tests/support/text_meshes.hpp"
 
 namespace lzb {
 namespace {
@@ -75,10 +77,12 @@ void expectStreamedEqualsCut(const std::string& spec) {
         }
 }
 
-TEST(StreamedShare, APlyFileStreamedGivesTheShareCutFromTheLoadedScene) {
+TEST(StreamedShare, AMeshFileStreamedGivesTheShareCutFromTheLoadedScene) {
   const test::ScratchDir dir;
   for (const auto encoding : {test::PlyEncoding::kLittleEndian, test::PlyEncoding::kAscii})
     expectStreamedEqualsCut(test::polygonMesh(encoding, 0.0, 12).write(dir.path() / "near.ply"));
+  expectStreamedEqualsCut(dir.write("near.off", test::offGrid("COFF", 0.0)).string());
+  expectStreamedEqualsCut(dir.write("far.obj", test::objGrid(true, 1e7)).string());
 }
 
 TEST(StreamedShare, AFarPlyFileIsSplitThroughItsRecentredNode) {
@@ -100,9 +104,11 @@ TEST(StreamedShare, AGeneratedLandscapeGivesTheShareCutFromTheLoadedScene) {
 TEST(StreamedShare, OtherScenesAreNotStreamed) {
   EXPECT_FALSE(openChunkedScene("builtin:city?blocks=1", true).has_value());
   const test::ScratchDir dir;
-  EXPECT_FALSE(openChunkedScene(dir.write("a.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").string(),
-                                true)
-                   .has_value());
+  EXPECT_FALSE(
+      openChunkedScene(
+          dir.write("a.obj", "mtllib a.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").string(), true)
+          .has_value());
+  EXPECT_FALSE(openChunkedScene(dir.write("a.stl", "solid a\nendsolid a\n").string(), true));
 }
 
 }  // namespace

@@ -7,17 +7,17 @@
 
 #include "src/scene/builtin.hpp"
 #include "src/scene/load.hpp"
-#include "src/scene/ply_stream.hpp"
+#include "src/scene/mesh_stream.hpp"
 
 namespace lzb {
 
 namespace {
 
-bool isPly(const std::string& spec) {
+bool isStreamedFormat(const std::string& spec) {
   std::string ext = std::filesystem::path(spec).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
-  return ext == ".ply";
+  return ext == ".ply" || ext == ".off" || ext == ".obj";
 }
 
 }  // namespace
@@ -37,24 +37,24 @@ std::optional<ChunkedScene> openGeneratedScene(const std::string& spec) {
 
 namespace {
 
-std::optional<ChunkedScene> streamedPly(const std::string& spec, bool quiet) {
+std::optional<ChunkedScene> streamedMesh(const std::string& spec, bool quiet) {
   std::string why;
-  std::shared_ptr<const PlyMeshStream> ply = PlyMeshStream::open(spec, why);
-  if (!ply) {
+  std::shared_ptr<const MeshStream> mesh = MeshStream::open(spec, why);
+  if (!mesh) {
     if (!quiet)
       std::fprintf(stderr, "note: %s: loaded whole, not streamed (%s)\n", spec.c_str(),
                    why.c_str());
     return std::nullopt;
   }
-  if (!quiet) warnDropped(spec, ply->stats());
+  if (!quiet) warnDropped(spec, mesh->stats());
   ChunkedScene c;
   c.base.source = spec;
-  c.triangles = ply->triangles();
-  c.placement = ply->placement();
-  c.heldBytes = ply->heldBytes();
-  c.chunks = [ply](const std::function<void(const Mesh&)>& out) {
-    ply->forEachChunk(out);
-    return ply->stats();
+  c.triangles = mesh->triangles();
+  c.placement = mesh->placement();
+  c.heldBytes = mesh->heldBytes();
+  c.chunks = [mesh](const std::function<void(const Mesh&)>& out) {
+    mesh->forEachChunk(out);
+    return mesh->stats();
   };
   return c;
 }
@@ -63,7 +63,7 @@ std::optional<ChunkedScene> streamedPly(const std::string& spec, bool quiet) {
 
 std::optional<ChunkedScene> openChunkedScene(const std::string& spec, bool quiet) {
   if (spec.rfind("builtin:", 0) == 0) return openGeneratedScene(spec);
-  if (isPly(spec)) return streamedPly(spec, quiet);
+  if (isStreamedFormat(spec)) return streamedMesh(spec, quiet);
   return std::nullopt;
 }
 

@@ -5,12 +5,10 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <glm/gtc/matrix_transform.hpp>
 
 #include "src/core/error.hpp"
 #include "src/scene/mesh_builder.hpp"
 #include "src/scene/mesh_faces.hpp"
-#include "src/scene/mesh_file.hpp"
 #include "src/scene/ply_text_reader.hpp"
 
 namespace lzb {
@@ -241,19 +239,15 @@ void skipElement(Reader& in, const PlyElement& e, const std::string& where) {
 
 }  // namespace
 
+PlyMeshStream::PlyMeshStream(const std::filesystem::path& path) : MeshStream(path) {}
+
 PlyMeshStream::~PlyMeshStream() = default;
 
 std::unique_ptr<PlyMeshStream> PlyMeshStream::open(const std::filesystem::path& path,
                                                    std::string& why) {
-  std::unique_ptr<PlyMeshStream> s(new PlyMeshStream);
-  s->path_ = path;
-  s->where_ = path.string();
+  std::unique_ptr<PlyMeshStream> s(new PlyMeshStream(path));
   const std::string& where = s->where_;
-  std::error_code ec;
-  require(std::filesystem::exists(path, ec), where, "file not found");
-  require(std::filesystem::is_regular_file(path, ec), where, "not a regular file");
   std::ifstream file(path, std::ios::binary);
-  require(bool(file), where, "cannot be read (permission?)");
   std::string head(kHeaderLimit, '\0');
   file.read(head.data(), std::streamsize(head.size()));
   head.resize(size_t(file.gcount()));
@@ -301,24 +295,24 @@ void PlyMeshStream::scan() {
       readVertices(in, el);
     } else if (e == l.face) {
       faceData_ = in.offset();
-      stats_ = readFaces(
-          in, [](const Mesh&) {}, size_t(1) << 16);
+      const std::function<void(const Mesh&)> none = [](const Mesh&) {};
+      FaceChunks faces(held_, none, size_t(1) << 16);
+      readFaceElement(in, faces);
+      stats_ = faces.finish();
     } else {
       skipElement(in, el, where_);
     }
   }
   in.finish();
-  require(stats_.loaded > 0, where_,
-          "no valid triangles (" + std::to_string(stats_.degenerate) + " degenerate, " +
-              std::to_string(stats_.nonFinite) + " non-finite dropped)");
+  requireTriangles();
 }
 
 template <class Reader>
 void PlyMeshStream::readVertices(Reader& in, const PlyElement& el) {
   const Layout& l = *layout_;
   const bool coloured = std::any_of(l.rgba, l.rgba + 4, [](int i) { return i >= 0; });
-  positions_.resize(size_t(el.count));
-  if (coloured) colours_.assign(size_t(el.count), glm::vec3(0.0f));
+  held_.positions.resize(size_t(el.count));
+  if (coloured) held_.colours.assign(size_t(el.count), glm::vec3(0.0f));
   std::vector<double> values(el.properties.size());
   Bounds bounds;
   for (uint64_t i = 0; i < el.count; ++i) {
@@ -330,38 +324,25 @@ void PlyMeshStream::readVertices(Reader& in, const PlyElement& el) {
       else
         values[k] = in.scalar(p.type);
     }
-    glm::vec3& v = positions_[size_t(i)];
+    glm::vec3& v = held_.positions[size_t(i)];
     v = glm::vec3(float(values[size_t(l.x)]), float(values[size_t(l.y)]),
                   float(values[size_t(l.z)]));
     for (int c = 0; coloured && c < 3; ++c)
       if (l.rgba[c] >= 0)
-        colours_[size_t(i)][c] =
+        held_.colours[size_t(i)][c] =
             normalisedColour(values[size_t(l.rgba[c])], el.properties[size_t(l.rgba[c])].type);
     const glm::dvec3 p = storedVertex(glm::dmat4(1.0), v.x, v.y, v.z, glm::dvec3(0.0));
     if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) bounds.extend(p);
   }
-  origin_ = storageOrigin(bounds);
-  // The loaded scene: the file's node placed at the origin, or its recentred geometry translated.
-  if (origin_ != glm::dvec3(0.0))
-    placement_ = glm::dmat4(1.0) * glm::translate(glm::dmat4(1.0), origin_);
+  held_.place(bounds);
 }
 
 template <class Reader>
-LoadStats PlyMeshStream::readFaces(Reader& in, const std::function<void(const Mesh&)>& out,
-                                   size_t chunk) const {
+void PlyMeshStream::readFaceElement(Reader& in, FaceChunks& faces) const {
   const PlyElement& el = header_.elements[layout_->face];
   const size_t indexAt = size_t(layout_->indices);
-  const uint64_t vertices = positions_.size();
-  LoadStats stats;
-  Mesh mesh;
-  MeshBuilder builder(mesh, stats);
-  FaceSplitter face;
+  const uint64_t vertices = held_.positions.size();
   std::vector<uint32_t> index;
-  const auto colourOf = [&](const std::array<uint32_t, 3>& t) {
-    return colours_.empty()
-               ? kDefaultMeshColor
-               : meanColour(colours_[index[t[0]]], colours_[index[t[1]]], colours_[index[t[2]]]);
-  };
   for (uint64_t f = 0; f < el.count; ++f) {
     in.at(&el.name, f, el.count);
     for (size_t k = 0; k < el.properties.size(); ++k) {
@@ -384,35 +365,18 @@ LoadStats PlyMeshStream::readFaces(Reader& in, const std::function<void(const Me
         });
       }
     }
-    face.polygon.clear();
-    for (uint32_t i : index) {
-      const glm::vec3& v = positions_[i];
-      face.polygon.push_back(storedVertex(glm::dmat4(1.0), v.x, v.y, v.z, origin_));
-    }
-    face.split(builder, stats, colourOf);
-    if (mesh.size() >= chunk) {
-      out(mesh);
-      mesh = Mesh();
-    }
+    faces.face(index);
   }
-  if (!mesh.empty()) out(mesh);
-  return stats;
 }
 
-void PlyMeshStream::forEachChunk(const std::function<void(const Mesh&)>& out, size_t chunk) const {
-  LoadStats pass;
-  try {
-    if (binary()) {
-      PlyReader in = reader<PlyReader>(faceData_);
-      pass = readFaces(in, out, chunk);
-    } else {
-      PlyTextReader in = reader<PlyTextReader>(faceData_);
-      pass = readFaces(in, out, chunk);
-    }
-  } catch (const NotStreamed&) {
-    pass.loaded = ~uint64_t(0);  // the first reading found none: the file changed
+void PlyMeshStream::readFaces(FaceChunks& faces) const {
+  if (binary()) {
+    PlyReader in = reader<PlyReader>(faceData_);
+    readFaceElement(in, faces);
+  } else {
+    PlyTextReader in = reader<PlyTextReader>(faceData_);
+    readFaceElement(in, faces);
   }
-  require(pass.loaded == stats_.loaded, where_, "changed while it was read");
 }
 
 }  // namespace lzb
