@@ -102,13 +102,17 @@ EmbreeSceneOptions witnessEmbreeOptions(int threads) {
 
 }  // namespace
 
-bool RayWitness::visibleInPixel(int x, int y, uint64_t id) const {
-  const std::optional<Scene::TriangleRef> ref = scene_.resolve(id);
+bool anyWitnessRay(const Scene& scene, const Camera& camera, int x, int y, uint64_t id,
+                   const std::function<bool(const glm::dvec3&)>& ray) {
+  const std::optional<Scene::TriangleRef> ref = scene.resolve(id);
   if (!ref) return false;
-  const Polygon<glm::dvec2> p = partInPixel(worldTriangle(scene_, *ref), camera_, x, y);
+  const Polygon<glm::dvec2> p = partInPixel(worldTriangle(scene, *ref), camera, x, y);
   if (p.n < 3) return false;  // T does not reach the pixel between near and far
-  return anyPointOf(p, [&](const glm::dvec2& q) {
-    const glm::dvec3 dir = camera_.pixelDirection(q.x, q.y);
+  return anyPointOf(p, [&](const glm::dvec2& q) { return ray(camera.pixelDirection(q.x, q.y)); });
+}
+
+bool RayWitness::visibleInPixel(int x, int y, uint64_t id) const {
+  return anyWitnessRay(scene_, camera_, x, y, id, [&](const glm::dvec3& dir) {
     return embree_.intersect(camera_.position(), dir, camera_.nearPlane(), camera_.farPlane()).id ==
            id;
   });

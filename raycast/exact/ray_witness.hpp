@@ -23,6 +23,7 @@
 // point), stopping at the first witness. Only covered pixels whose triangle is not among the 17
 // reference IDs are asked.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -35,6 +36,12 @@
 namespace lzb {
 
 inline constexpr int kWitnessRays = 64;  // rays spread over P after its centroid (see above)
+
+// Steps 1 and 2 of the rule for triangle `id` of `scene` and pixel (x, y): calls ray(direction)
+// for each ray from camera.position() in the rule's order until it returns true; false when none
+// did (or `id` is not in the scene, or T does not reach the pixel).
+bool anyWitnessRay(const Scene& scene, const Camera& camera, int x, int y, uint64_t id,
+                   const std::function<bool(const glm::dvec3&)>& ray);
 
 // The witness for one frame: scene, its Embree scene and the frame's camera, all borrowed.
 class RayWitness : public VisibilityWitness {
@@ -59,6 +66,7 @@ class WitnessScene {
  public:
   WitnessScene(const Scene& scene, const Renderer* reference, int threads);
   RayWitness witness(const Camera& camera) const { return RayWitness(scene_, *embree_, camera); }
+  const EmbreeScene& embree() const { return *embree_; }
   bool sharedWithReference() const { return !owned_; }
   double buildSeconds() const { return owned_ ? owned_->buildStats().seconds : 0.0; }
 

@@ -13,6 +13,21 @@ Judge makeJudge(const std::string& name, const Scene& scene, const RenderOptions
   return judge;
 }
 
+Judge makePartJudge(const std::string& name, const HeldShare& held, const RenderOptions& options) {
+  const Method& method = methodNamed(name, "--reference");
+  std::vector<std::unique_ptr<Renderer>> inner;
+  std::vector<const Renderer*> lent;
+  for (const ScenePart& part : held.parts) {
+    inner.push_back(part.scene.expandedTriangles() > 0 ? method.create(part.scene, options)
+                                                       : nullptr);
+    lent.push_back(inner.back().get());
+  }
+  Judge judge;
+  judge.parts = std::make_unique<PartWitness>(held, lent, options.threads);
+  judge.reference = makePartRenderer(held, std::move(inner), name);
+  return judge;
+}
+
 ReferenceFrame renderSubsamples(const mpi::FrameDriver& driver, Renderer& exact,
                                 const Camera& camera, int f, const Framebuffer& centres,
                                 double& seconds) {
@@ -38,6 +53,22 @@ Accuracy judgeFrame(const Judge& judge, const Camera& camera, const Framebuffer&
   Stopwatch clock;
   const RayWitness witness = judge.witness->witness(camera);
   const Accuracy accuracy = compare(image, exact, &witness);
+  seconds = clock.seconds();
+  return accuracy;
+}
+
+Accuracy judgePartFrame(const Judge& judge, const mpi::Group& group, const Camera& camera,
+                        const Framebuffer& image, const ReferenceFrame& exact, double& seconds,
+                        std::vector<uint64_t>& raysPerRank) {
+  Stopwatch clock;
+  // First the pixels the 17 samples leave open, then their answers from every rank.
+  AskedWitness asked;
+  if (group.root()) compare(image, exact, &asked);
+  const std::vector<WitnessQuestion> questions = asked.questions();
+  std::vector<uint8_t> proven = judge.parts->answer(group, camera, questions, raysPerRank);
+  if (!group.root()) return {};
+  const AnsweredWitness answered(questions, std::move(proven));
+  const Accuracy accuracy = compare(image, exact, &answered);
   seconds = clock.seconds();
   return accuracy;
 }

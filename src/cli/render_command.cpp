@@ -126,9 +126,17 @@ namespace {
 void addAccuracy(const mpi::FrameDriver& driver, const Judge& judge, const Camera& camera, int f,
                  const Framebuffer& image, nlohmann::json& frame) {
   const ExactFrame exact = renderReference(driver, judge, camera, f);
-  if (!driver.group().root()) return;
   double seconds = 0.0;
-  frame["accuracy"] = toJson(judgeFrame(judge, camera, image, exact.samples, seconds));
+  Accuracy accuracy;
+  if (judge.parts) {  // --distribute data: every rank witnesses with what it holds
+    std::vector<uint64_t> rays;
+    accuracy = judgePartFrame(judge, driver.group(), camera, image, exact.samples, seconds, rays);
+    if (driver.group().root()) frame["witness_rays_per_rank"] = rays;
+  } else if (driver.group().root()) {
+    accuracy = judgeFrame(judge, camera, image, exact.samples, seconds);
+  }
+  if (!driver.group().root()) return;
+  frame["accuracy"] = toJson(accuracy);
   frame["accuracy_seconds"] = seconds;
   frame["reference_seconds"] = exact.centreSeconds;
   frame["reference_subsample_seconds"] = exact.subsampleSeconds;
@@ -266,7 +274,9 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
     else
       renderer = methodNamed(a.method, "--method").create(plan.scene, plan.options);
     if (!a.reference.empty())
-      judge = makeJudge(a.reference, plan.scene, plan.options, groups.group().root());
+      judge = distribution == Distribution::kData
+                  ? makePartJudge(a.reference, plan.held, plan.options)
+                  : makeJudge(a.reference, plan.scene, plan.options, groups.group().root());
     setupSeconds = setupClock.seconds();
   });
   FrameStats setupStats = renderer->setupStats();
@@ -278,7 +288,10 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
   report.setMethod(*renderer, judge.reference.get());
   report.setDistribution(distribution == Distribution::kData ? "data" : "replicate");
   report.setSetup(plan.loadSeconds, setupSeconds, methodSetup);
-  if (judge.witness) report.setWitness(*judge.witness);
+  if (judge.witness)
+    report.setWitness(judge.witness->sharedWithReference(), judge.witness->buildSeconds());
+  if (judge.parts)
+    report.setWitness(judge.parts->sharedWithReference(), judge.parts->buildSeconds());
 
   // A --resume of another job is refused here, before anything is written.
   FramesToRender todo;

@@ -78,8 +78,6 @@ void validateRenderArgs(const RenderArgs& a) {
     require(!methodNamed(a.method, "--method").rendersFromStore(), "--distribute data",
             "cuts the scene into regions, each with structures of its own: a store (--tree) holds "
             "the whole scene's (leave out --tree to build each region's tree in memory)");
-    require(a.reference.empty() && !a.subsamples, "--distribute data",
-            "cannot take --reference or --subsamples yet (they need the whole scene)");
   }
   require(a.regions <= 65536, "--regions", "must be in [0, 65536]");
   require(a.fov >= 0.0 && a.fov < 180.0, "--fov", "must be in (0, 180) degrees");

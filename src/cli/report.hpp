@@ -32,7 +32,9 @@ class Report {
   void setSetup(double loadSeconds, double setupSeconds, nlohmann::json methodSetup);
   // How accuracy is witnessed: the rule and whose Embree scene it traces (its build is part of
   // setup_seconds when it is its own).
-  void setWitness(const WitnessScene& witness);
+  // The ray witness: whether it traces the raycast reference's own Embree scenes, else the time
+  // it took to build its own (this rank's).
+  void setWitness(bool sharedWithReference, double buildSeconds);
   // Frame f's entry completed with its frame number, covered pixels, triangles and camera.
   nlohmann::json frameEntry(int frame, const Camera& camera, nlohmann::json entry,
                             const Framebuffer& image) const;

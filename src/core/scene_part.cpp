@@ -26,6 +26,14 @@ uint64_t IdMap::global(uint64_t local) const {
   return run.global + (local - run.local);
 }
 
+uint64_t IdMap::local(uint64_t global) const {
+  const auto after = std::upper_bound(runs_.begin(), runs_.end(), global,
+                                      [](uint64_t id, const Run& r) { return id < r.global; });
+  if (after == runs_.begin()) return kNoId;
+  const Run& run = *(after - 1);
+  return global - run.global < run.count ? run.local + (global - run.global) : kNoId;
+}
+
 namespace {
 
 const Node& nodeAtPath(const Scene& scene, const std::vector<uint32_t>& path) {

@@ -25,6 +25,9 @@ class IdMap {
   void add(uint64_t global, uint64_t count);
   // The whole scene's ID of the part's ID `local` (kNoId stays kNoId).
   uint64_t global(uint64_t local) const;
+  // The part's ID of the whole scene's ID `global`, kNoId where the part does not hold it (the
+  // runs rise in both: a part keeps its units in the whole scene's order).
+  uint64_t local(uint64_t global) const;
   uint64_t size() const { return size_; }
 
  private:

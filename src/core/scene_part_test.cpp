@@ -73,6 +73,7 @@ TEST(ScenePart, APartKeepsItsUnitsWithTheWholeScenesIds) {
   for (uint64_t local = 0; local < part.ids.size(); ++local) {
     const uint64_t global = part.ids.global(local);
     EXPECT_EQ(global, expected[local]);
+    EXPECT_EQ(part.ids.local(global), local);
     for (int k = 0; k < 3; ++k)
       EXPECT_EQ(corner(part.scene, local, k), corner(whole, global, k)) << local << " corner " << k;
     const auto a = part.scene.resolve(local), b = whole.resolve(global);
@@ -81,6 +82,8 @@ TEST(ScenePart, APartKeepsItsUnitsWithTheWholeScenesIds) {
   }
   EXPECT_EQ(part.ids.global(part.ids.size()), kNoId);
   EXPECT_EQ(part.ids.global(kNoId), kNoId);
+  for (const uint64_t absent : {uint64_t(0), uint64_t(2), uint64_t(8), uint64_t(12), kNoId})
+    EXPECT_EQ(part.ids.local(absent), kNoId) << absent;
   // The opened pair is a node of its own holding one of its two instances, with the pair's box.
   ASSERT_EQ(part.scene.nodes.size(), whole.nodes.size() + 1);
   EXPECT_EQ(part.scene.nodes.back().instances.size(), 1u);
