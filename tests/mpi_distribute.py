@@ -14,7 +14,8 @@ each group holds the whole scene. The hybrid's probe (whether to cast every pixe
 same choice and counts on every rank count.
 The landscape, two binary PLY files (the city exported, and a terrain far from the origin that
 the loader stores recentred) and the bunny (a scan's OFF) are streamed, each rank keeping only its
-triangles; the city generated is loaded whole and cut.
+triangles; the city generated is loaded whole and cut, and so is a TOML scene placing two mesh
+files, each cut into its triangles (with 7 regions every rank must hold some).
 
 usage: mpi_distribute.py LZB MPIEXEC WORK [DATA]
 """
@@ -60,21 +61,27 @@ def far_terrain(path, n=24, offset=1.0e6):
 
 
 def make_files(lzb, work):
-    """The PLY scenes, written into work."""
+    """The PLY scenes and a TOML scene placing two of them, written into work."""
     city = os.path.join(work, "city.ply")
     subprocess.run([lzb, "export", "builtin:city?blocks=2", city, "--quiet"], check=True,
                    stdout=subprocess.DEVNULL)
     far_terrain(os.path.join(work, "far.ply"))
+    far_terrain(os.path.join(work, "ground.ply"), offset=-12.0)
+    with open(os.path.join(work, "two.toml"), "w") as f:
+        f.write('root = "world"\n[[meshes]]\nname = "city"\nfile = "city.ply"\n'
+                '[[meshes]]\nname = "ground"\nfile = "ground.ply"\n'
+                '[[nodes]]\nname = "world"\ninstances = [{ node = "city" }, '
+                '{ node = "ground", translate = [0, -3, 0], scale = 8 }]\n')
 
 
 def scenes(work, data, method):
     """The exact methods' scenes; the others leave out the far terrain (the sample tree refuses
-    it) and the bunny (streamed as the PLY files are)."""
+    it), the TOML scene (cut as the city is) and the bunny (streamed as the PLY files are)."""
     files = [os.path.join(work, "city.ply")]
     if method not in EXACT:
         return SCENES + files
     bunny = os.path.join(data, "bunny00.off") if data else ""
-    return SCENES + files + [os.path.join(work, "far.ply")] + (
+    return SCENES + files + [os.path.join(work, "far.ply"), os.path.join(work, "two.toml")] + (
         [bunny] if bunny and os.path.exists(bunny) and os.path.getsize(bunny) else [])
 
 

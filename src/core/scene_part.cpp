@@ -156,26 +156,40 @@ void reserveKept(const PartOf& partOf, uint64_t count, uint32_t meshNode,
   }
 }
 
-void keepMainMeshTriangles(const Mesh& from, uint64_t firstId, const PartOf& partOf,
-                           uint32_t meshNode, std::vector<ScenePart>& parts) {
+namespace {
+
+// Appends each triangle t of `from` (unit firstUnit + t, ID firstId + t) to the mesh of node
+// nodeOf(p) of parts[p], p = partOf[firstUnit + t], unless kNoPart.
+template <class NodeOf>
+void keepTriangles(const Mesh& from, uint64_t firstUnit, uint64_t firstId, const PartOf& partOf,
+                   NodeOf&& nodeOf, std::vector<ScenePart>& parts) {
   // (part, vertex of `from`) -> the part's vertex: a vertex shared by triangles of one part
   // stays shared there.
   absl::flat_hash_map<uint64_t, uint32_t> vertexIn;
   for (size_t t = 0; t < from.size(); ++t) {
-    const uint64_t id = firstId + t;
-    if (id >= partOf.size() || partOf[id] == kNoPart) continue;
-    ScenePart& part = parts[partOf[id]];
-    Mesh& to = part.scene.nodes[meshNode].mesh;
+    const uint64_t unit = firstUnit + t;
+    if (unit >= partOf.size() || partOf[unit] == kNoPart) continue;
+    const uint32_t p = partOf[unit];
+    ScenePart& part = parts[p];
+    Mesh& to = part.scene.nodes[nodeOf(p)].mesh;
     for (int k = 0; k < 3; ++k) {
       const uint32_t v = from.indices[3 * t + size_t(k)];
-      const auto [it, added] = vertexIn.try_emplace((uint64_t(partOf[id]) << 32) | v, 0u);
+      const auto [it, added] = vertexIn.try_emplace((uint64_t(p) << 32) | v, 0u);
       if (added) it->second = to.addVertex(from.positions[v]);
       to.indices.push_back(it->second);
     }
     to.colors.push_back(from.color(t));
-    part.ids.add(id, 1);
+    part.ids.add(firstId + t, 1);
     ++part.units;
   }
+}
+
+}  // namespace
+
+void keepMainMeshTriangles(const Mesh& from, uint64_t firstId, const PartOf& partOf,
+                           uint32_t meshNode, std::vector<ScenePart>& parts) {
+  keepTriangles(
+      from, firstId, firstId, partOf, [meshNode](uint32_t) { return meshNode; }, parts);
 }
 
 glm::dvec3 placedCentroid(const Mesh& mesh, size_t t, const glm::dmat4& toWorld) {
@@ -186,6 +200,33 @@ glm::dvec3 placedCentroid(const Mesh& mesh, size_t t, const glm::dmat4& toWorld)
 }
 
 namespace {
+
+// Whether each node is reached by exactly one chain of instances from the root (paths counted
+// in topological order, saturating at 2).
+std::vector<bool> placedOnce(const Scene& scene) {
+  std::vector<uint32_t> order;  // post-order from the root: children before parents
+  std::vector<uint8_t> state(scene.nodes.size(), 0);
+  std::vector<std::pair<uint32_t, size_t>> stack{{scene.root, 0}};
+  state[scene.root] = 1;
+  while (!stack.empty()) {
+    auto& [n, next] = stack.back();
+    if (next < scene.nodes[n].instances.size()) {
+      const uint32_t child = scene.nodes[n].instances[next++].node;
+      if (!state[child]) state[child] = 1, stack.push_back({child, 0});
+      continue;
+    }
+    order.push_back(n);
+    stack.pop_back();
+  }
+  std::vector<uint8_t> paths(scene.nodes.size(), 0);
+  paths[scene.root] = 1;
+  for (auto it = order.rbegin(); it != order.rend(); ++it)
+    for (const Instance& inst : scene.nodes[*it].instances)
+      paths[inst.node] = uint8_t(std::min(2, paths[inst.node] + paths[*it]));
+  std::vector<bool> once(scene.nodes.size());
+  for (size_t n = 0; n < once.size(); ++n) once[n] = paths[n] == 1;
+  return once;
+}
 
 // The node of a scene's main mesh: down from the root while a node holds one instance alone.
 uint32_t mainMeshNode(const Scene& scene, SceneUnits& units) {
@@ -202,9 +243,24 @@ uint32_t mainMeshNode(const Scene& scene, SceneUnits& units) {
 
 }  // namespace
 
+const SceneUnit& SceneUnits::entryOf(size_t u) const {
+  const auto after =
+      std::upper_bound(opened.begin(), opened.end(), uint64_t(u),
+                       [](uint64_t unit, const SceneUnit& e) { return unit < e.firstUnit; });
+  return *(after - 1);
+}
+
 glm::dvec3 SceneUnits::centre(const Scene& scene, size_t u) const {
-  return u < meshTriangles ? placedCentroid(nodeAtPath(scene, meshPath).mesh, u, meshToWorld)
-                           : opened[u - meshTriangles].centre;
+  if (u < meshTriangles) return placedCentroid(nodeAtPath(scene, meshPath).mesh, u, meshToWorld);
+  const SceneUnit& e = entryOf(u);
+  return e.split ? placedCentroid(nodeAtPath(scene, e.path).mesh, u - e.firstUnit, e.toWorld)
+                 : e.centre;
+}
+
+uint64_t SceneUnits::triangles(size_t u) const {
+  if (u < meshTriangles) return 1;
+  const SceneUnit& e = entryOf(u);
+  return e.split ? 1 : e.triangles;
 }
 
 SceneUnits sceneUnits(const Scene& scene, uint32_t regions) {
@@ -220,11 +276,17 @@ SceneUnits sceneUnits(const Scene& scene, uint32_t regions) {
   const uint64_t limit = std::max<uint64_t>(1, scene.expandedTriangles() / (8 * uint64_t(regions)));
   std::priority_queue<OpenableUnit, std::vector<OpenableUnit>, Larger> queue(Larger{}, std::move(open));
   size_t opened = 0;
+  const std::vector<bool> once = placedOnce(scene);
   while (!queue.empty()) {
     OpenableUnit c = queue.top();
     queue.pop();
+    const Node& node = scene.nodes[c.node];
+    // A mesh placed once is cut into its triangles: as many units as the scene has triangles.
+    const bool splittable = once[c.node] && !node.procedural && !node.mesh.empty();
     const bool openable =
-        c.unit.subtree && !scene.nodes[c.node].instances.empty() && opened < kMaxOpened;
+        c.unit.subtree && (!node.instances.empty() || splittable) && opened < kMaxOpened;
+    c.unit.split = !c.unit.subtree && c.unit.triangles > limit && splittable;
+    if (c.unit.split) c.unit.toWorld = c.toWorld;
     if (c.unit.triangles <= limit || !openable) {
       units.opened.push_back(std::move(c.unit));
       continue;
@@ -236,6 +298,12 @@ SceneUnits sceneUnits(const Scene& scene, uint32_t regions) {
   }
   std::sort(units.opened.begin(), units.opened.end(),
             [](const SceneUnit& a, const SceneUnit& b) { return a.idBase < b.idBase; });
+  uint64_t unit = units.meshTriangles;
+  for (SceneUnit& e : units.opened) {
+    e.firstUnit = unit;
+    unit += e.split ? e.triangles : 1;
+  }
+  units.openedUnits = unit - units.meshTriangles;
   return units;
 }
 
@@ -288,9 +356,21 @@ std::vector<ScenePart> cutScene(const Scene& whole, const SceneUnits& units, con
     reserveKept(partOf, units.meshTriangles, meshNode, cut);
     keepMainMeshTriangles(nodeAtPath(whole, units.meshPath).mesh, 0, partOf, meshNode, cut);
   }
-  for (size_t u = 0; u < units.opened.size(); ++u) {
-    const uint32_t p = partOf[units.meshTriangles + u];
-    if (p != kNoPart) builds[p].add(units.opened[u]);
+  for (const SceneUnit& e : units.opened) {
+    if (e.split) {
+      // The node made in a part only when it keeps some of the triangles (in ID order).
+      std::vector<uint32_t> node(parts, kNoPart);
+      keepTriangles(
+          nodeAtPath(whole, e.path).mesh, e.firstUnit, e.idBase, partOf,
+          [&](uint32_t p) {
+            if (node[p] == kNoPart) node[p] = builds[p].nodeAt(e.path);
+            return node[p];
+          },
+          cut);
+      continue;
+    }
+    const uint32_t p = partOf[e.firstUnit];
+    if (p != kNoPart) builds[p].add(e);
   }
   for (uint32_t p = 0; p < parts; ++p) finishPart(whole, builds[p], cut[p].scene);
   return cut;

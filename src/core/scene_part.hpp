@@ -5,9 +5,11 @@
 //
 // The pieces ("units") are the main mesh's triangles (the root's own, or a recentred mesh
 // file's), each alone, and whole instances with their subtrees; an instance too large for the
-// region count is opened into its node's own mesh (one unit) and its node's instances, the
-// largest first. A procedural object's mesh stays one unit
-// (its layout maps a parameter point to a triangle). A part keeps the whole scene's instance
+// region count is opened into its node's own mesh and its node's instances, the largest first. An
+// opened mesh too large for the region count whose node the scene places once (a mesh file of a
+// TOML scene, one of several files) is cut into its triangles, a unit each; else it stays one
+// unit, as a procedural object's mesh always does (its layout maps a parameter point to a
+// triangle). A part keeps the whole scene's instance
 // chains, transforms and node boxes, and its units in the whole scene's order, so exact methods
 // compute every hit bit for bit as on the whole scene, and IDs rise with the whole scene's.
 #include <cstdint>
@@ -46,26 +48,30 @@ struct SceneUnit {
   bool subtree = true;
   uint64_t idBase = 0;     // the whole scene's ID of its first triangle
   uint64_t triangles = 0;  // expanded
-  glm::dvec3 centre{0.0};  // world position: the triangle's centroid, else its box's centre
+  glm::dvec3 centre{0.0};  // world position: its box's centre (not split)
+  bool split = false;      // the node's own mesh cut into its triangles: `triangles` units
+  uint64_t firstUnit = 0;  // the index of its (first) unit among all units
+  glm::dmat4 toWorld{1.0};  // split: the node's frame -> world (its triangles' centroids)
 };
 
 // The units of `scene` for `regions` regions, in expanded-ID order: the triangles of its main mesh
 // (one unit each, kept implicit: a scene of 10^8 triangles needs no 10^8 unit records), then the
-// rest. The main mesh is the root's own, or, when the root holds only one instance, that of the
-// node such a chain of single instances leads to (a mesh file stored recentred, mesh_file.hpp).
-// Instances holding more than 1/8 of a region's share are opened while any is (and can be), at
-// most 2^20 of them.
+// rest (a split mesh's triangles implicit too). The main mesh is the root's own, or, when the root
+// holds only one instance, that of the node such a chain of single instances leads to (a mesh file
+// stored recentred, mesh_file.hpp). Instances holding more than 1/8 of a region's share are opened
+// while any is (and can be), at most 2^20 of them.
 struct SceneUnits {
   std::vector<uint32_t> meshPath;  // the chain of instances from the root to the main mesh's node
   glm::dmat4 meshToWorld{1.0};     // that node's frame -> world
   uint64_t meshTriangles = 0;      // units [0, meshTriangles): the main mesh's triangle u
-  std::vector<SceneUnit> opened;   // the units after them
-  size_t size() const { return meshTriangles + opened.size(); }
+  std::vector<SceneUnit> opened;   // the units after them, in ID order
+  uint64_t openedUnits = 0;        // the units they make (a split mesh's triangles one each)
+  size_t size() const { return meshTriangles + openedUnits; }
   // Unit u's world centre and expanded triangles.
   glm::dvec3 centre(const Scene& scene, size_t u) const;
-  uint64_t triangles(size_t u) const {
-    return u < meshTriangles ? 1 : opened[u - meshTriangles].triangles;
-  }
+  uint64_t triangles(size_t u) const;
+  // The entry of `opened` holding unit u (>= meshTriangles).
+  const SceneUnit& entryOf(size_t u) const;
 };
 SceneUnits sceneUnits(const Scene& scene, uint32_t regions);
 

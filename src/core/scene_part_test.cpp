@@ -117,6 +117,58 @@ TEST(ScenePart, PartsOfComplementaryUnitsHoldEveryIdOnce) {
   for (uint64_t id : ids) EXPECT_EQ(id, next++);
 }
 
+// Three mesh files as a TOML scene places them: A (6 triangles) and, through a recentring node,
+// C (5) each placed once; D (3) placed twice. Expanded IDs: A 0-5, C 6-10, D 11-13 and 14-16.
+Scene filesScene() {
+  Scene s;
+  s.root = s.addNode("root");
+  const uint32_t a = s.addNode("a"), b = s.addNode("b"), c = s.addNode("c"), d = s.addNode("d");
+  for (int k = 0; k < 6; ++k)
+    s.nodes[a].mesh.add({float(k), 0, 0}, {k + 1.0f, 0, 0}, {float(k), 1, 0}, packRgba8(1, 0, 0));
+  for (int k = 0; k < 5; ++k)
+    s.nodes[c].mesh.add({0, float(k), 0}, {0, k + 1.0f, 0}, {1, float(k), 0}, packRgba8(0, 1, 0));
+  for (int k = 0; k < 3; ++k)
+    s.nodes[d].mesh.add({0, 0, float(k)}, {1, 0, float(k)}, {0, 1, float(k)}, packRgba8(0, 0, 1));
+  s.nodes[b].instances = {{c, glm::translate(glm::dmat4(1.0), {0, 0, 100})}};
+  s.nodes[s.root].instances = {{a, glm::translate(glm::dmat4(1.0), {50, 0, 0})},
+                               {b, glm::dmat4(1.0)},
+                               {d, glm::dmat4(1.0)},
+                               {d, glm::translate(glm::dmat4(1.0), {0, 50, 0})}};
+  s.finalize();
+  return s;
+}
+
+TEST(ScenePart, AMeshPlacedOnceIsCutIntoItsTriangles) {
+  const Scene whole = filesScene();
+  const SceneUnits units = sceneUnits(whole, 4);
+  ASSERT_EQ(units.size(), 6u + 5u + 2u) << "A's and C's triangles, D's two placements";
+  for (size_t u = 0; u < units.size(); ++u) {
+    EXPECT_EQ(units.triangles(u), u < 11 ? 1u : 3u) << u;
+    if (u < 11) {  // a split mesh's unit sits at its triangle's placed centroid
+      glm::dvec3 c(0.0);
+      for (int k = 0; k < 3; ++k) c += corner(whole, u, k) / 3.0;
+      EXPECT_LT(glm::length(units.centre(whole, u) - c), 1e-9) << u;
+    }
+  }
+  PartOf both(units.size());
+  for (size_t u = 0; u < units.size(); ++u) both[u] = uint32_t(u % 3 == 0);
+  const std::vector<ScenePart> parts = cutScene(whole, units, both, 2);
+  std::set<uint64_t> ids;
+  for (const ScenePart& part : parts) {
+    uint64_t last = 0;
+    for (uint64_t local = 0; local < part.ids.size(); ++local) {
+      const uint64_t global = part.ids.global(local);
+      EXPECT_TRUE(local == 0 || global > last) << "IDs rise with the whole scene's";
+      last = global;
+      EXPECT_EQ(part.ids.local(global), local);
+      EXPECT_TRUE(ids.insert(global).second) << global << " held twice";
+      for (int k = 0; k < 3; ++k)
+        EXPECT_EQ(corner(part.scene, local, k), corner(whole, global, k)) << global;
+    }
+  }
+  EXPECT_EQ(ids.size(), whole.expandedTriangles());
+}
+
 TEST(ScenePart, AnEmptyPartHoldsNothing) {
   const Scene whole = mixedScene();
   const SceneUnits units = sceneUnits(whole, 1);
