@@ -107,10 +107,13 @@ void ObjMeshStream::scan() {
     const std::string_view line = content(raw);
     const std::string_view key = keyword(line);
     std::string_view rest = line.substr(key.size());
-    if (key.empty() || key == "s" || key == "vn" || key == "vt") {
-      const size_t n = key == "vn" ? 3 : key == "vt" ? values(rest).size() : 0;
-      if ((key == "vn" && values(rest).size() != n) || (key == "vt" && n != 2 && n != 3))
+    if (key == "vn" || key == "vt") {
+      // Read, never used: assimp fails on a bad one (or on a texture coordinate of 1 or 4).
+      const size_t n = values(rest).size();
+      if (key == "vn" ? n != 3 : n != 2 && n != 3)
         throw NotStreamed{"a normal or texture coordinate of another size"};
+    } else if (key.empty() || key == "s") {
+      continue;
     } else if (key == "v") {
       readVertex(rest, bounds);
     } else if (key == "o" || key == "g") {

@@ -7,7 +7,6 @@
 #include <fstream>
 
 #include "src/core/error.hpp"
-#include "src/scene/mesh_builder.hpp"
 #include "src/scene/mesh_faces.hpp"
 #include "src/scene/ply_text_reader.hpp"
 
