@@ -142,7 +142,7 @@ class PartRenderer : public Renderer {
     local_.resize(fb.size());
     for (size_t p = 0; p < inner_.size(); ++p) {
       if (!inner_[p]) continue;  // an empty part
-      Framebuffer& into = scratch(fb);
+      Framebuffer& into = scratch(fb, inner_[p]->colourFromIds());
       FrameStats own;
       inner_[p]->render(camera, frame, WorkShare{0, 1}, into, own);
       addStagesAndCounts(own, stats);
@@ -230,22 +230,27 @@ class PartRenderer : public Renderer {
     stats.addStage("shade", clock.seconds());
   }
   // Part p's frame composited into the rank's by the whole scene's IDs; the winner's part and
-  // own ID are kept for shading once at the end (not every part's whole frame).
-  void keepNearerOfPart(uint32_t p, const Framebuffer& into, Framebuffer& fb) {
+  // own ID are kept for shading once at the end (not every part's whole frame). Each covered
+  // pixel is emptied on the way, so the scratch frame is left cleared for the next part.
+  void keepNearerOfPart(uint32_t p, Framebuffer& into, Framebuffer& fb) {
     const IdMap& ids = held_.parts[p].ids;
     const long n = long(fb.size());
 #pragma omp parallel for schedule(static)
     for (long k = 0; k < n; ++k) {
       const size_t i = size_t(k);
-      if (!into.covered(i)) continue;
+      if (!into.covered(i) && into.depth[i] == kEmptyDepth) continue;
       const uint64_t id = ids.global(into.id[i]);
-      if (!nearer(into.depth[i], id, fb.depth[i], fb.id[i])) continue;
-      fb.depth[i] = into.depth[i];
-      fb.id[i] = id;
-      fb.color[i] = into.color[i];
-      owner_[i] = p;
-      local_[i] = into.id[i];
+      if (into.covered(i) && nearer(into.depth[i], id, fb.depth[i], fb.id[i])) {
+        fb.depth[i] = into.depth[i];
+        fb.id[i] = id;
+        fb.color[i] = into.color[i];
+        owner_[i] = p;
+        local_[i] = into.id[i];
+      }
+      into.depth[i] = kEmptyDepth, into.id[i] = kNoId, into.color[i] = kBackground;
     }
+    // A part bringing its own colour may have coloured empty pixels too.
+    scratchClear_ = inner_[p]->colourFromIds();
   }
   // Each pixel shaded by the part that won it (parts bringing their own colour keep it).
   void shadeWinners(const Camera& camera, Framebuffer& fb) {
@@ -267,10 +272,13 @@ class PartRenderer : public Renderer {
     for (const auto& [name, seconds] : from.stageSeconds) to.addStage(name, seconds);
     for (const auto& [name, value] : from.counts.items()) to.addCount(name, value.get<double>());
   }
-  Framebuffer& scratch(const Framebuffer& like) {
+  // The frame a part renders into, cleared (the Renderer contract): the last part's
+  // composite emptied it unless that part brought its own colour or this one does (its colour
+  // must start from the background everywhere).
+  Framebuffer& scratch(const Framebuffer& like, bool colourFromIds) {
     if (scratch_.width != like.width || scratch_.height != like.height)
       scratch_.resize(like.width, like.height);
-    else
+    else if (!scratchClear_ || !colourFromIds)
       scratch_.clear();
     return scratch_;
   }
@@ -281,6 +289,7 @@ class PartRenderer : public Renderer {
   std::vector<std::unique_ptr<Renderer>> inner_;
   std::string method_;
   Framebuffer scratch_;
+  bool scratchClear_ = false;     // every pixel of scratch_ empty, its colour the background
   std::vector<uint32_t> owner_;   // the part that won each pixel
   std::vector<uint64_t> local_;   // that part's own ID there
   std::vector<uint32_t> pixels_;  // the pixels grouped by owner
