@@ -25,6 +25,11 @@ struct Framebuffer {
   Framebuffer() = default;
   Framebuffer(int w, int h) { resize(w, h); }
   void resize(int w, int h);
+  // Resizes (and clears) only when the size differs; for a frame whose every depth and ID the
+  // caller writes (KeyBuffer::resolve), the colour staying as it was.
+  void resizeUnlessSized(int w, int h) {
+    if (w != width || h != height) resize(w, h);
+  }
   void clear();
   size_t size() const { return size_t(width) * size_t(height); }
   size_t index(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }

@@ -158,7 +158,7 @@ void SurfelRenderer::drawSurfelPass(const Frame& f, FrameStats& stats) {
 }
 
 void SurfelRenderer::combine(Framebuffer& fb) {
-  points_.resize(fb.width, fb.height);
+  points_.resizeUnlessSized(fb.width, fb.height);  // resolve writes every depth and ID
   keys_.resolve(points_, options_.threads);
   compositeNearer(fb, points_);
 }
