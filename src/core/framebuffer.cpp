@@ -15,9 +15,14 @@ void Framebuffer::resize(int w, int h) {
 }
 
 void Framebuffer::clear() {
-  std::fill(depth.begin(), depth.end(), kEmptyDepth);
-  std::fill(color.begin(), color.end(), kBackground);
-  std::fill(id.begin(), id.end(), kNoId);
+  // On the frame's threads: one thread fills 16 bytes a pixel at ~20 GB/s (1.7 ms at 1080p).
+  const long n = long(size());
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < n; ++i) {
+    depth[size_t(i)] = kEmptyDepth;
+    color[size_t(i)] = kBackground;
+    id[size_t(i)] = kNoId;
+  }
 }
 
 size_t Framebuffer::coveredCount() const {
