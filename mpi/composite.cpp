@@ -491,4 +491,8 @@ CompositeStats compositeWithColour(const Group& g, Framebuffer& fb, CompositeStr
   return stats;
 }
 
+std::vector<uint8_t> touchedTilesOf(const Framebuffer& fb, const ScreenTiles& tiles) {
+  return touchedTiles(fb, tiles);
+}
+
 }  // namespace lzb::mpi

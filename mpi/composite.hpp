@@ -4,8 +4,9 @@
 // the number of ranks nor on the order of the reduction.
 //
 // Ranks send keys only (8 bytes a pixel, 16 above 2^32 expanded triangles): colour is shaded at
-// the root from the composited IDs (the frame driver does it). Every strategy sends only the
-// region that carries information, the way IceT skips empty pixels:
+// the root from the composited IDs (the frame driver does it), except with `tiles`, where each
+// rank shades its touched tiles first and sends them with their colour (compositeWithColour). Every
+// strategy sends only the region that carries information, the way IceT skips empty pixels:
 //   reduce  MPI_Reduce with the key minimum over the union of the ranks' touched rectangles;
 //   bswap   binary swap over that union (halves exchanged pairwise, log2 P rounds; ranks past the
 //           largest power of two fold into it first), then the owned stripes gathered;
@@ -18,6 +19,7 @@
 // keeping the lower rank's: by touched tiles with `tiles`, else by MPI_Reduce of the frame.
 #include <string>
 
+#include "mpi/decomposition.hpp"
 #include "mpi/group.hpp"
 #include "src/core/framebuffer.hpp"
 
@@ -38,6 +40,9 @@ struct CompositeStats {
 // ranks' fb is unspecified. wide: 128-bit keys (IDs of 2^32 and above).
 CompositeStats compositeAtRoot(const Group& g, Framebuffer& fb, CompositeStrategy strategy,
                                bool wide);
+
+// Per 16 x 16 tile of `tiles`: 1 when fb covers some pixel of it (what kTiles sends).
+std::vector<uint8_t> touchedTilesOf(const Framebuffer& fb, const ScreenTiles& tiles);
 
 // The same with colour carried along, as 16-byte pixels: with kTiles each rank's touched tiles to
 // the root (merged in rank order), with the other strategies MPI_Reduce over the whole frame.

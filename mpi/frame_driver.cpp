@@ -61,6 +61,20 @@ nlohmann::json gather(const Group& g, const nlohmann::json& mine) {
 
 }  // namespace
 
+// Shades the pixels of the tiles fb covers (the rest stays the background).
+void shadeTouchedTiles(const Scene& scene, const Camera& camera, Framebuffer& fb) {
+  const ScreenTiles tiles(fb.width, fb.height);
+  const std::vector<uint8_t> touched = touchedTilesOf(fb, tiles);
+  std::vector<uint32_t> pixels;
+  for (int t = 0; t < tiles.count(); ++t) {
+    if (!touched[size_t(t)]) continue;
+    const TileRect r = tiles.tile(t);
+    for (int y = r.y0; y < r.y1; ++y)
+      for (int x = r.x0; x < r.x1; ++x) pixels.push_back(uint32_t(fb.index(x, y)));
+  }
+  shadePixels(scene, camera, pixels, fb.id, fb.color);
+}
+
 nlohmann::json gatherStats(const Group& g, const FrameStats& stats) {
   return gather(g, rankEntry(g.rank, stats));
 }
@@ -95,11 +109,20 @@ nlohmann::json FrameDriver::render(Renderer& renderer, const Camera& camera, int
     stats.addStage("wait", idle.seconds());
   }
   const bool fromIds = renderer.colourFromIds();
+  // Ranks sending touched tiles shade them first, each its own at once, and send the colour
+  // along: the root alone shading the whole frame after the composite cost more.
+  const bool shadeFirst = fromIds && g.size > 1 && strategy_ == CompositeStrategy::kTiles;
+  if (shadeFirst) {
+    Stopwatch shading;
+    shadeTouchedTiles(scene_, camera, fb);
+    stats.addStage("shade", shading.seconds());
+  }
   const CompositeStats composite =
-      fromIds ? compositeAtRoot(g, fb, strategy_, scene_.expandedTriangles() > 0xffffffffull)
-              : compositeWithColour(g, fb, strategy_);
+      fromIds && !shadeFirst
+          ? compositeAtRoot(g, fb, strategy_, scene_.expandedTriangles() > 0xffffffffull)
+          : compositeWithColour(g, fb, strategy_);
   stats.addStage("composite", composite.seconds);
-  if (fromIds && g.root()) {
+  if (fromIds && !shadeFirst && g.root()) {
     Stopwatch shading;
     shadeFromIds(scene_, camera, fb);
     stats.addStage("shade", shading.seconds());
