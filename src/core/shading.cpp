@@ -46,11 +46,14 @@ Rgba8 shadePlaced(const Scene& scene, const Placement& p, uint32_t triangle, con
 }
 
 // Sub-pixel triangles are shaded once each from scattered indices and vertices: their triangle
-// indices are fetched 16 pixels ahead, their corners and colour 8 ahead (within the placement).
+// indices are fetched 16 pixels ahead, their corners and colour 8 ahead (within the placement),
+// where the mesh is too large for the caches (a mesh of the city's size shades faster without:
+// 1080p, 1 thread, 4.3 against 6.1-6.9 ms; the 10^7 landscape's 4.4-4.6 against 6.1 with it).
 template <class IdAt>
 void prefetchAhead(const Scene& scene, const Placement& p, const IdAt& idAt, long k, long n) {
   constexpr long kIndices = 16, kCorners = 8;
-  if (p.end <= p.base) return;
+  constexpr uint64_t kCachedTriangles = uint64_t(1) << 16;  // ~1.5 MB of indices, corners, colour
+  if (p.end <= p.base + kCachedTriangles) return;
   const Mesh& mesh = scene.nodes[p.node].mesh;
   if (k + kIndices < n) {
     const uint64_t id = idAt(k + kIndices);
