@@ -327,6 +327,8 @@ double directSend(const Group& g, Framebuffer& fb, const Rect& u, const Rect& to
   return bytes;
 }
 
+}  // namespace
+
 // Per tile: 1 when some pixel is covered. Row by row over the whole frame, each tile's span
 // OR-ed without an early exit (it vectorizes; a per-pixel test with an exit took milliseconds on
 // a mostly empty 1080p frame), the spans stepped by the tile side (a tile(index) call per span,
@@ -350,6 +352,8 @@ std::vector<uint8_t> touchedTiles(const Framebuffer& fb, const ScreenTiles& tile
   }
   return touched;
 }
+
+namespace {
 
 // The touched tiles of this rank, one after the other: the tile's index, then its keys row by
 // row (unaligned in the byte buffer, so copied by memcpy). Packed in parallel over the tiles.
@@ -489,10 +493,6 @@ CompositeStats compositeWithColour(const Group& g, Framebuffer& fb, CompositeStr
   }
   stats.seconds = clock.seconds();
   return stats;
-}
-
-std::vector<uint8_t> touchedTilesOf(const Framebuffer& fb, const ScreenTiles& tiles) {
-  return touchedTiles(fb, tiles);
 }
 
 }  // namespace lzb::mpi

@@ -41,8 +41,8 @@ struct CompositeStats {
 CompositeStats compositeAtRoot(const Group& g, Framebuffer& fb, CompositeStrategy strategy,
                                bool wide);
 
-// Per 16 x 16 tile of `tiles`: 1 when fb covers some pixel of it (what kTiles sends).
-std::vector<uint8_t> touchedTilesOf(const Framebuffer& fb, const ScreenTiles& tiles);
+// Per tile of `tiles`: 1 when fb covers some pixel of it (what kTiles sends).
+std::vector<uint8_t> touchedTiles(const Framebuffer& fb, const ScreenTiles& tiles);
 
 // The same with colour carried along, as 16-byte pixels: with kTiles each rank's touched tiles to
 // the root (merged in rank order), with the other strategies MPI_Reduce over the whole frame.

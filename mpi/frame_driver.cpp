@@ -59,12 +59,10 @@ nlohmann::json gather(const Group& g, const nlohmann::json& mine) {
   return out;
 }
 
-}  // namespace
-
 // Shades the pixels of the tiles fb covers (the rest stays the background).
 void shadeTouchedTiles(const Scene& scene, const Camera& camera, Framebuffer& fb) {
   const ScreenTiles tiles(fb.width, fb.height);
-  const std::vector<uint8_t> touched = touchedTilesOf(fb, tiles);
+  const std::vector<uint8_t> touched = touchedTiles(fb, tiles);
   std::vector<uint32_t> pixels;
   for (int t = 0; t < tiles.count(); ++t) {
     if (!touched[size_t(t)]) continue;
@@ -74,6 +72,8 @@ void shadeTouchedTiles(const Scene& scene, const Camera& camera, Framebuffer& fb
   }
   shadePixels(scene, camera, pixels, fb.id, fb.color);
 }
+
+}  // namespace
 
 nlohmann::json gatherStats(const Group& g, const FrameStats& stats) {
   return gather(g, rankEntry(g.rank, stats));

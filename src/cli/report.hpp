@@ -30,10 +30,8 @@ class Report {
   void setMethod(const Renderer& method, const Renderer* reference);
   // Load and set-up wall times, and the method's own set-up figures (mpi::gatherStats).
   void setSetup(double loadSeconds, double setupSeconds, nlohmann::json methodSetup);
-  // How accuracy is witnessed: the rule and whose Embree scene it traces (its build is part of
-  // setup_seconds when it is its own).
-  // The ray witness: whether it traces the raycast reference's own Embree scenes, else the time
-  // it took to build its own (this rank's).
+  // How accuracy is witnessed: the ray witness, whether it traces the raycast reference's own
+  // Embree scenes, else the time this rank took to build its own (part of setup_seconds).
   void setWitness(bool sharedWithReference, double buildSeconds);
   // Frame f's entry completed with its frame number, covered pixels, triangles and camera.
   nlohmann::json frameEntry(int frame, const Camera& camera, nlohmann::json entry,

@@ -1,7 +1,5 @@
 #include "src/scene/chunked_scene.hpp"
 
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 
@@ -10,17 +8,6 @@
 #include "src/scene/mesh_stream.hpp"
 
 namespace lzb {
-
-namespace {
-
-bool isStreamedFormat(const std::string& spec) {
-  std::string ext = std::filesystem::path(spec).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
-  return ext == ".ply" || ext == ".off" || ext == ".obj";
-}
-
-}  // namespace
 
 std::optional<ChunkedScene> openGeneratedScene(const std::string& spec) {
   if (spec.rfind("builtin:", 0) != 0) return std::nullopt;
@@ -63,7 +50,7 @@ std::optional<ChunkedScene> streamedMesh(const std::string& spec, bool quiet) {
 
 std::optional<ChunkedScene> openChunkedScene(const std::string& spec, bool quiet) {
   if (spec.rfind("builtin:", 0) == 0) return openGeneratedScene(spec);
-  if (isStreamedFormat(spec)) return streamedMesh(spec, quiet);
+  if (MeshStream::streams(spec)) return streamedMesh(spec, quiet);
   return std::nullopt;
 }
 

@@ -56,10 +56,24 @@ MeshStream::MeshStream(const std::filesystem::path& path) : path_(path), where_(
 
 MeshStream::~MeshStream() = default;
 
-std::unique_ptr<MeshStream> MeshStream::open(const std::filesystem::path& path, std::string& why) {
+namespace {
+
+std::string lowerExtension(const std::filesystem::path& path) {
   std::string ext = path.extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+}  // namespace
+
+bool MeshStream::streams(const std::filesystem::path& path) {
+  const std::string ext = lowerExtension(path);
+  return ext == ".ply" || ext == ".off" || ext == ".obj";
+}
+
+std::unique_ptr<MeshStream> MeshStream::open(const std::filesystem::path& path, std::string& why) {
+  const std::string ext = lowerExtension(path);
   if (ext == ".ply") return PlyMeshStream::open(path, why);
   if (ext == ".off") return OffMeshStream::open(path, why);
   if (ext == ".obj") return ObjMeshStream::open(path, why);

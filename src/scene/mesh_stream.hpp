@@ -64,6 +64,8 @@ class MeshStream {
   // would: the caller then loads it (after this reading). Throws InputError naming the file for
   // a missing, unreadable, truncated or malformed one, as the loader would refuse it.
   static std::unique_ptr<MeshStream> open(const std::filesystem::path& path, std::string& why);
+  // Whether `path` names a format open() reads (by its extension, in any case).
+  static bool streams(const std::filesystem::path& path);
   virtual ~MeshStream();
 
   const std::string& where() const { return where_; }

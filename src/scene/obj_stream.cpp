@@ -20,8 +20,7 @@ bool isSpace(char c) {
 // A line's content without its line end, or NotStreamed where assimp would split or join it
 // elsewhere (a carriage return, form feed or NUL inside, a continuation backslash).
 std::string_view content(std::string_view line) {
-  if (!line.empty() && line.back() == '\n') line.remove_suffix(1);
-  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  line = withoutLineEnd(line);
   if (line.find_first_of(std::string_view("\0\r\f\\", 4)) != std::string_view::npos)
     throw NotStreamed{"a NUL, carriage return, form feed or backslash inside a line"};
   return line;

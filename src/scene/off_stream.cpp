@@ -18,8 +18,7 @@ constexpr uint64_t kMaxCount = std::numeric_limits<uint32_t>::max();
 // A line's content without its line end, or NotStreamed where assimp would split or end it
 // elsewhere (a carriage return, form feed or NUL inside, a line longer than its buffer).
 std::string_view content(std::string_view line) {
-  if (!line.empty() && line.back() == '\n') line.remove_suffix(1);
-  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  line = withoutLineEnd(line);
   if (line.find_first_of(std::string_view("\0\r\f", 3)) != std::string_view::npos)
     throw NotStreamed{"a NUL, carriage return or form feed inside a line"};
   if (line.size() > kLineLimit) throw NotStreamed{"a line longer than 4000 characters"};

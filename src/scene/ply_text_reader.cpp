@@ -16,8 +16,7 @@ void PlyTextReader::at(const std::string* element, uint64_t index, uint64_t coun
            " of " + std::to_string(count);
   });
   if (line.back() != '\n') throw NotStreamed{"a last line without a line end"};
-  line.remove_suffix(1);
-  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  line = withoutLineEnd(line);
   // assimp ends a line at any of these, and skips a blank line after "\n" but not after "\r\n".
   if (line.find_first_of(std::string_view("\0\r\f", 3)) != std::string_view::npos)
     throw NotStreamed{"a NUL, carriage return or form feed inside a data line"};

@@ -59,6 +59,12 @@ bool TextLines::next(std::string_view& line) {
   return true;
 }
 
+std::string_view withoutLineEnd(std::string_view line) {
+  if (!line.empty() && line.back() == '\n') line.remove_suffix(1);
+  if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+  return line;
+}
+
 bool nextToken(std::string_view& rest, std::string_view& token) {
   const size_t begin = rest.find_first_not_of(" \t");
   if (begin == std::string_view::npos) {

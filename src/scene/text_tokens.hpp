@@ -33,6 +33,9 @@ class TextLines {
   uint64_t offset_ = 0;
 };
 
+// `line` without its line end ("\n" or "\r\n").
+std::string_view withoutLineEnd(std::string_view line);
+
 // The next token of `rest` (split at spaces and tabs, as assimp's SkipSpaces); false when none.
 bool nextToken(std::string_view& rest, std::string_view& token);
 
