@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "mpi/decomposition.hpp"
+#include "mpi/frame_tiles.hpp"
 #include "src/core/depth_key.hpp"
 #include "src/core/error.hpp"
 #include "src/core/timer.hpp"
@@ -329,37 +330,13 @@ double directSend(const Group& g, Framebuffer& fb, const Rect& u, const Rect& to
 
 }  // namespace
 
-// Per tile: 1 when some pixel is covered. Row by row over the whole frame, each tile's span
-// OR-ed without an early exit (it vectorizes; a per-pixel test with an exit took milliseconds on
-// a mostly empty 1080p frame), the spans stepped by the tile side (a tile(index) call per span,
-// two divisions, took longer than reading the pixels).
-std::vector<uint8_t> touchedTiles(const Framebuffer& fb, const ScreenTiles& tiles) {
-  std::vector<uint8_t> touched(size_t(tiles.count()), 0);
-  const int cols = tiles.columns(), side = tiles.side();
-#pragma omp parallel for schedule(static)
-  for (int ty = 0; ty < tiles.rows(); ++ty) {
-    uint8_t* band = touched.data() + size_t(ty) * size_t(cols);
-    const int y1 = std::min((ty + 1) * side, fb.height);
-    for (int y = ty * side; y < y1; ++y) {
-      const uint32_t* row = depthBits(fb, y);
-      for (int tx = 0; tx < cols; ++tx) {
-        const int x0 = tx * side, x1 = std::min(x0 + side, fb.width);
-        uint32_t any = 0;
-        for (int x = x0; x < x1; ++x) any |= row[x] ^ kEmptyBits;
-        band[tx] |= uint8_t(any != 0);
-      }
-    }
-  }
-  return touched;
-}
-
 namespace {
 
 // The touched tiles of this rank, one after the other: the tile's index, then its keys row by
 // row (unaligned in the byte buffer, so copied by memcpy). Packed in parallel over the tiles.
 template <class K>
-std::vector<char> packTiles(const Framebuffer& fb, const ScreenTiles& tiles) {
-  const std::vector<uint8_t> touched = touchedTiles(fb, tiles);
+std::vector<char> packTiles(const Framebuffer& fb, const ScreenTiles& tiles,
+                            const std::vector<uint8_t>& touched) {
   std::vector<int> list;
   for (int t = 0; t < tiles.count(); ++t)
     if (touched[size_t(t)]) list.push_back(t);
@@ -382,10 +359,22 @@ std::vector<char> packTiles(const Framebuffer& fb, const ScreenTiles& tiles) {
   return out;
 }
 
-// Every rank's packed tiles into the root's keys: the nearer key per pixel.
+// One rank's packed tiles [begin, end) of `all` into the root's keys, the nearer key per pixel,
+// in parallel over the tiles (a rank sends each tile once); marks them in `touched`.
 template <class K>
-void mergeTiles(const std::vector<char>& all, const ScreenTiles& tiles, Framebuffer& fb) {
-  for (size_t at = 0; at < all.size();) {
+void mergeTiles(const std::vector<char>& all, size_t begin, size_t end, const ScreenTiles& tiles,
+                Framebuffer& fb, std::vector<uint8_t>& touched) {
+  std::vector<size_t> starts;
+  for (size_t at = begin; at < end;) {
+    int t;
+    std::memcpy(&t, all.data() + at, sizeof(int));
+    starts.push_back(at);
+    touched[size_t(t)] = 1;
+    at += sizeof(int) + size_t(tiles.tile(t).pixels()) * sizeof(K);
+  }
+#pragma omp parallel for schedule(static)
+  for (size_t k = 0; k < starts.size(); ++k) {
+    size_t at = starts[k];
     int t;
     std::memcpy(&t, all.data() + at, sizeof(int));
     at += sizeof(int);
@@ -401,9 +390,9 @@ void mergeTiles(const std::vector<char>& all, const ScreenTiles& tiles, Framebuf
 }
 
 template <class K>
-double tileSend(const Group& g, Framebuffer& fb) {
+double tileSend(const Group& g, Framebuffer& fb, std::vector<uint8_t>& touched) {
   const ScreenTiles tiles(fb.width, fb.height);
-  const std::vector<char> mine = g.root() ? std::vector<char>() : packTiles<K>(fb, tiles);
+  const std::vector<char> mine = g.root() ? std::vector<char>() : packTiles<K>(fb, tiles, touched);
   const int bytes = int(mine.size());
   std::vector<int> counts(g.root() ? size_t(g.size) : 0), displs(counts.size());
   LZB_MPI_CALL(MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, g.comm));
@@ -416,13 +405,18 @@ double tileSend(const Group& g, Framebuffer& fb) {
   LZB_MPI_CALL(MPI_Gatherv(mine.data(), bytes, MPI_BYTE, all.data(), counts.data(), displs.data(),
                            MPI_BYTE, 0, g.comm));
   if (!g.root()) return double(bytes);
-  mergeTiles<K>(all, tiles, fb);
+  for (int r = 1; r < g.size; ++r)  // in rank order: on equal keys the lower rank's pixel stays
+    mergeTiles<K>(all, size_t(displs[size_t(r)]), size_t(displs[size_t(r)] + counts[size_t(r)]),
+                  tiles, fb, touched);
   return 0.0;
 }
 
 template <class K>
 double composite(const Group& g, Framebuffer& fb, CompositeStrategy s) {
-  if (s == CompositeStrategy::kTiles) return tileSend<K>(g, fb);
+  if (s == CompositeStrategy::kTiles) {
+    std::vector<uint8_t> touched = touchedTiles(fb, ScreenTiles(fb.width, fb.height));
+    return tileSend<K>(g, fb, touched);
+  }
   const Rect touched = touchedRect(fb);
   const Rect u = unionRect(g, touched);
   if (u.empty()) return 0.0;  // nothing anywhere: the root's frame is already empty
@@ -456,12 +450,13 @@ CompositeStats compositeAtRoot(const Group& g, Framebuffer& fb, CompositeStrateg
   return stats;
 }
 
-CompositeStats compositeWithColour(const Group& g, Framebuffer& fb, CompositeStrategy strategy) {
+CompositeStats compositeWithColour(const Group& g, Framebuffer& fb, CompositeStrategy strategy,
+                                   std::vector<uint8_t>& touched) {
   CompositeStats stats;
   if (g.size == 1) return stats;
   Stopwatch clock;
   if (strategy == CompositeStrategy::kTiles) {
-    stats.bytesSent = tileSend<Pixel>(g, fb);
+    stats.bytesSent = tileSend<Pixel>(g, fb, touched);
     stats.seconds = clock.seconds();
     return stats;
   }

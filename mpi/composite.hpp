@@ -17,7 +17,9 @@
 // Renderers whose colour is not a function of the IDs (rzb's Gaussian reconstruction, the regions
 // of --distribute data) composite whole 16-byte pixels with compositeWithColour, equal (depth, ID)
 // keeping the lower rank's: by touched tiles with `tiles`, else by MPI_Reduce of the frame.
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "mpi/decomposition.hpp"
 #include "mpi/group.hpp"
@@ -41,11 +43,11 @@ struct CompositeStats {
 CompositeStats compositeAtRoot(const Group& g, Framebuffer& fb, CompositeStrategy strategy,
                                bool wide);
 
-// Per tile of `tiles`: 1 when fb covers some pixel of it (what kTiles sends).
-std::vector<uint8_t> touchedTiles(const Framebuffer& fb, const ScreenTiles& tiles);
-
-// The same with colour carried along, as 16-byte pixels: with kTiles each rank's touched tiles to
-// the root (merged in rank order), with the other strategies MPI_Reduce over the whole frame.
-CompositeStats compositeWithColour(const Group& g, Framebuffer& fb, CompositeStrategy strategy);
+// The same with colour carried along, as 16-byte pixels: with kTiles each rank's touched tiles
+// (`touched`, ScreenTiles' grid, mpi/frame_tiles.hpp) to the root, merged in rank order, the root
+// adding the tiles it received to its `touched`; with the other strategies MPI_Reduce over the
+// whole frame (`touched` unused).
+CompositeStats compositeWithColour(const Group& g, Framebuffer& fb, CompositeStrategy strategy,
+                                   std::vector<uint8_t>& touched);
 
 }  // namespace lzb::mpi

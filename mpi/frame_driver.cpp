@@ -4,6 +4,7 @@
 
 #include "mpi/collectives.hpp"
 #include "mpi/composite.hpp"
+#include "mpi/frame_tiles.hpp"
 #include "src/core/shading.hpp"
 #include "src/core/system.hpp"
 #include "src/core/timer.hpp"
@@ -59,18 +60,16 @@ nlohmann::json gather(const Group& g, const nlohmann::json& mine) {
   return out;
 }
 
-// Shades the pixels of the tiles fb covers (the rest stays the background).
-void shadeTouchedTiles(const Scene& scene, const Camera& camera, Framebuffer& fb) {
-  const ScreenTiles tiles(fb.width, fb.height);
-  const std::vector<uint8_t> touched = touchedTiles(fb, tiles);
-  std::vector<uint32_t> pixels;
-  for (int t = 0; t < tiles.count(); ++t) {
-    if (!touched[size_t(t)]) continue;
-    const TileRect r = tiles.tile(t);
-    for (int y = r.y0; y < r.y1; ++y)
-      for (int x = r.x0; x < r.x1; ++x) pixels.push_back(uint32_t(fb.index(x, y)));
-  }
-  shadePixels(scene, camera, pixels, fb.id, fb.color);
+// fb sized for the camera and empty: only the tiles its last frame may have left in use when the
+// driver knows them (a sparse frame is cheap to clear), else every pixel.
+void clearForFrame(Framebuffer& fb, const Camera& camera) {
+  const ScreenTiles tiles(camera.width(), camera.height());
+  if (fb.width == camera.width() && fb.height == camera.height() &&
+      fb.tilesInUse.size() == size_t(tiles.count()))
+    clearTiles(fb, tiles, fb.tilesInUse);
+  else
+    fb.resize(camera.width(), camera.height());
+  fb.tilesInUse.clear();
 }
 
 }  // namespace
@@ -85,7 +84,7 @@ nlohmann::json FrameDriver::render(Renderer& renderer, const Camera& camera, int
   g.barrier();  // frame time starts when every rank is ready
   Stopwatch clock;
   FrameStats stats;
-  fb.resize(camera.width(), camera.height());
+  clearForFrame(fb, camera);
   stats.addStage("clear", clock.seconds());
   WorkShare share{g.rank, g.size};
   if (g.size > 1) {
@@ -109,24 +108,35 @@ nlohmann::json FrameDriver::render(Renderer& renderer, const Camera& camera, int
     stats.addStage("wait", idle.seconds());
   }
   const bool fromIds = renderer.colourFromIds();
-  // Ranks sending touched tiles shade them first, each its own at once, and send the colour
-  // along: the root alone shading the whole frame after the composite cost more.
-  const bool shadeFirst = fromIds && g.size > 1 && strategy_ == CompositeStrategy::kTiles;
-  if (shadeFirst) {
+  // Each rank shades the tiles it touched, at once, and sends them with their colour (the root
+  // alone shading the whole frame after the composite cost more), unless the keys go alone.
+  const bool tileComposite = g.size > 1 && strategy_ == CompositeStrategy::kTiles;
+  const bool keysAlone = fromIds && g.size > 1 && !tileComposite;
+  const ScreenTiles tiles(fb.width, fb.height);
+  std::vector<uint8_t> touched;
+  if (fromIds ? !keysAlone : tileComposite) {
+    Stopwatch scan;
+    touched = stats.touchedTiles.size() == size_t(tiles.count()) ? std::move(stats.touchedTiles)
+                                                                 : touchedTiles(fb, tiles);
+    stats.addStage("touched", scan.seconds());
+  }
+  if (fromIds && !keysAlone) {
     Stopwatch shading;
-    shadeTouchedTiles(scene_, camera, fb);
+    shadePixels(scene_, camera, tilePixels(fb, tiles, touched), fb.id, fb.color);
     stats.addStage("shade", shading.seconds());
   }
   const CompositeStats composite =
-      fromIds && !shadeFirst
-          ? compositeAtRoot(g, fb, strategy_, scene_.expandedTriangles() > 0xffffffffull)
-          : compositeWithColour(g, fb, strategy_);
+      keysAlone ? compositeAtRoot(g, fb, strategy_, scene_.expandedTriangles() > 0xffffffffull)
+                : compositeWithColour(g, fb, strategy_, touched);
   stats.addStage("composite", composite.seconds);
-  if (fromIds && !shadeFirst && g.root()) {
+  if (keysAlone && g.root()) {
     Stopwatch shading;
     shadeFromIds(scene_, camera, fb);
     stats.addStage("shade", shading.seconds());
   }
+  // Colour from the IDs lies in the touched tiles alone (the root's counting those it received);
+  // a renderer's own colour may spread past them.
+  if (fromIds && !keysAlone) fb.tilesInUse = std::move(touched);
   const double seconds = clock.seconds();
 
   nlohmann::json mine = rankEntry(g.rank, stats);

@@ -9,16 +9,19 @@
 
 namespace lzb::mpi {
 
-// Every rank calls render(). The ranks' depth and ID are composited at the root by `strategy`
-// (mpi/composite.hpp), then the root shades the colour from the IDs (shadeFromIds; a renderer
-// whose colour is not a function of the IDs composites whole pixels instead). With `tiles` and
-// several ranks, each rank shades the tiles it touched first and they go with their colour. On
-// return the root's fb holds the final image and the returned JSON holds: seconds (wall time of the
-// frame at the root, compositing and shading included), stages (each the maximum over ranks, plus
-// "clear" (the frame buffer's), "wait" (idle until the slowest rank is done: its maximum is the
-// imbalance), "composite" (the exchange) and "shade"), counts (each rank's share summed over ranks,
-// and the root's shared figures), peak_memory_bytes (maximum over ranks), bytes_sent, and ranks[]
-// with every rank's own stages and counts. Elsewhere: null.
+// Every rank calls render(). Each rank shades the tiles it touched (mpi/frame_tiles.hpp: the
+// renderer's record, else found from the depths) and sends them with their colour to the root
+// (`tiles`, the default); with the other strategies the ranks' depth and ID are composited at the
+// root (mpi/composite.hpp), which then shades the whole frame from the IDs. A renderer whose colour
+// is not a function of the IDs composites whole pixels instead. fb is either new or the one the
+// previous call rendered, unchanged since: then only the tiles that frame left in use are cleared
+// (Framebuffer::tilesInUse), so a sparse frame costs what it covers. On return the root's fb holds
+// the final image and the returned JSON holds: seconds (wall time of the frame at the root,
+// compositing and shading included), stages (each the maximum over ranks, plus "clear" (the frame
+// buffer's), "wait" (idle until the slowest rank is done: its maximum is the imbalance),
+// "touched" (finding the touched tiles), "composite" (the exchange) and "shade"), counts (each
+// rank's share summed over ranks, and the root's shared figures), peak_memory_bytes (maximum over
+// ranks), bytes_sent, and ranks[] with every rank's own stages and counts. Elsewhere: null.
 class FrameDriver {
  public:
   FrameDriver(const Group& g, const Scene& scene, CompositeStrategy strategy)

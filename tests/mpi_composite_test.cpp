@@ -4,6 +4,7 @@
 
 #include "mpi/collectives.hpp"
 #include "mpi/composite.hpp"
+#include "mpi/frame_tiles.hpp"
 #include "mpi/group.hpp"
 
 namespace lzb {
@@ -79,7 +80,9 @@ TEST_P(MpiCompositeWithColour, EqualsSerialComposite) {
   const mpi::Group g = mpi::Group::world();
   const int w = 97, h = 31;
   Framebuffer mine = bufferOfRank(g.rank, w, h, false);
-  const mpi::CompositeStats stats = mpi::compositeWithColour(g, mine, GetParam());
+  const ScreenTiles tiles(w, h);
+  std::vector<uint8_t> touched = touchedTiles(mine, tiles);
+  const mpi::CompositeStats stats = mpi::compositeWithColour(g, mine, GetParam(), touched);
   if (!g.root()) {
     if (GetParam() == mpi::CompositeStrategy::kTiles) {
       // Only the touched tiles: each rank's window leaves some of the frame's tiles out.
@@ -94,6 +97,10 @@ TEST_P(MpiCompositeWithColour, EqualsSerialComposite) {
   EXPECT_EQ(mine.id, expected.id);
   EXPECT_EQ(mine.depth, expected.depth);
   EXPECT_EQ(mine.color, expected.color);
+  // The root's record holds every tile a rank sent: the tiles the composite covers.
+  if (GetParam() == mpi::CompositeStrategy::kTiles) {
+    EXPECT_EQ(touched, touchedTiles(expected, tiles));
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Strategies, MpiCompositeWithColour,

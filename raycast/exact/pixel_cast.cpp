@@ -12,10 +12,11 @@ namespace lzb {
 
 namespace {
 
-// Traces the pixel centres of one tile into fb.
-void traceTile(const EmbreeScene& embree, const Camera& camera, const TileRect& r, bool packets,
+// Traces the pixel centres of one tile into fb; true when some ray hit.
+bool traceTile(const EmbreeScene& embree, const Camera& camera, const TileRect& r, bool packets,
                Framebuffer& fb) {
   const glm::dvec3 eye = camera.position();
+  bool any = false;
   if (!packets) {
     for (int y = r.y0; y < r.y1; ++y)
       for (int x = r.x0; x < r.x1; ++x) {
@@ -23,8 +24,9 @@ void traceTile(const EmbreeScene& embree, const Camera& camera, const TileRect& 
                                           camera.nearPlane(), camera.farPlane());
         fb.depth[fb.index(x, y)] = h.hit() ? h.t : kEmptyDepth;
         fb.id[fb.index(x, y)] = h.id;
+        any |= h.hit();
       }
-    return;
+    return any;
   }
   // 4x4 pixel blocks in order, so that each packet of 16 (or 8) rays is coherent.
   constexpr int kMax = ScreenTiles::kDefaultSide * ScreenTiles::kDefaultSide;
@@ -44,7 +46,9 @@ void traceTile(const EmbreeScene& embree, const Camera& camera, const TileRect& 
   for (size_t k = 0; k < n; ++k) {
     fb.depth[pixel[k]] = hits[k].hit() ? hits[k].t : kEmptyDepth;
     fb.id[pixel[k]] = hits[k].id;
+    any |= hits[k].hit();
   }
+  return any;
 }
 
 // The pixels whose centre rays can meet `box`: the rectangle of its corners' projections, a pixel
@@ -89,17 +93,18 @@ uint64_t castablePixels(const EmbreeScene& embree, const Camera& camera) {
 }
 
 uint64_t castEveryPixel(const EmbreeScene& embree, const Camera& camera, const WorkShare& share,
-                        Framebuffer& fb, int threads, bool packets) {
+                        Framebuffer& fb, std::vector<uint8_t>& touched, int threads, bool packets) {
   const ScreenTiles tiles(fb.width, fb.height);
   // Tiles beyond the projection of what the scene holds stay empty without a ray: a scene part
   // (--distribute data) casts only where its regions project.
   const std::vector<int> mine = tilesToCast(embree, camera, share, tiles);
+  touched.assign(size_t(tiles.count()), 0);
   const long count = long(mine.size());
   long rays = 0;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(threads, 1)) reduction(+ : rays)
   for (long k = 0; k < count; ++k) {
     const TileRect r = tiles.tile(mine[size_t(k)]);
-    traceTile(embree, camera, r, packets, fb);
+    touched[size_t(mine[size_t(k)])] = uint8_t(traceTile(embree, camera, r, packets, fb));
     rays += r.pixels();
   }
   return uint64_t(rays);

@@ -5,6 +5,7 @@
 // scene holds. --method raycast renders every frame so; the hybrid renders so a frame whose
 // probe finds casting every pixel the cheapest way (src/hybrid/README.md).
 #include <cstdint>
+#include <vector>
 
 #include "raycast/exact/embree_scene.hpp"
 #include "src/core/camera.hpp"
@@ -18,8 +19,10 @@ namespace lzb {
 uint64_t castablePixels(const EmbreeScene& embree, const Camera& camera);
 
 // Casts the pixels of share's tiles into fb (depth and ID; other pixels untouched) on `threads`
-// threads, as 4 x 4 Embree packets when `packets`; returns the rays cast.
+// threads, as 4 x 4 Embree packets when `packets`; returns the rays cast. `touched` gets 1 for
+// each tile (ScreenTiles' grid) where a ray hit, 0 elsewhere (FrameStats::touchedTiles).
 uint64_t castEveryPixel(const EmbreeScene& embree, const Camera& camera, const WorkShare& share,
-                        Framebuffer& fb, int threads, bool packets = true);
+                        Framebuffer& fb, std::vector<uint8_t>& touched, int threads,
+                        bool packets = true);
 
 }  // namespace lzb

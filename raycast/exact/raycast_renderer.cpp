@@ -44,8 +44,8 @@ std::string RaycastRenderer::decomposition() const {
 void RaycastRenderer::render(const Camera& camera, int, const WorkShare& share, Framebuffer& fb,
                              FrameStats& stats) {
   Stopwatch clock;
-  const uint64_t rays =
-      castEveryPixel(embree_, camera, share, fb, options_.threads, tuning_.packets);
+  const uint64_t rays = castEveryPixel(embree_, camera, share, fb, stats.touchedTiles,
+                                       options_.threads, tuning_.packets);
   stats.addStage("trace", clock.lap());
   stats.addCount("rays", double(rays));
 }

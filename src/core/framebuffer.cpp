@@ -16,6 +16,7 @@ void Framebuffer::resize(int w, int h) {
 
 void Framebuffer::clear() {
   // On the frame's threads: one thread fills 16 bytes a pixel at ~20 GB/s (1.7 ms at 1080p).
+  tilesInUse.clear();
   const long n = long(size());
 #pragma omp parallel for schedule(static)
   for (long i = 0; i < n; ++i) {

@@ -21,6 +21,11 @@ struct Framebuffer {
   std::vector<float> depth;
   std::vector<Rgba8> color;
   std::vector<uint64_t> id;
+  // Kept by the frame driver alone (mpi/frame_driver.hpp): after its frame, 1 for each tile of
+  // ScreenTiles' default grid that may hold a pixel other than the empty one (kEmptyDepth, kNoId,
+  // kBackground), so that its next frame clears only those. Empty: not known, every tile may
+  // (resize and clear empty it; whoever else writes a frame the driver rendered must too).
+  std::vector<uint8_t> tilesInUse;
 
   Framebuffer() = default;
   Framebuffer(int w, int h) { resize(w, h); }

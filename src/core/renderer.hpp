@@ -46,6 +46,10 @@ struct FrameStats {
   std::vector<std::pair<std::string, double>> stageSeconds;
   nlohmann::json counts = nlohmann::json::object();
   nlohmann::json shared = nlohmann::json::object();
+  // Set by a renderer that knows them: 1 for each tile of ScreenTiles' default grid
+  // (mpi/decomposition.hpp) where it covered a pixel of fb. Empty: the frame driver finds them
+  // from the depths.
+  std::vector<uint8_t> touchedTiles;
 
   void addStage(const std::string& name, double seconds) {
     for (auto& [n, s] : stageSeconds)

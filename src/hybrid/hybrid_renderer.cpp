@@ -255,8 +255,8 @@ bool HybridRenderer::everyPixelPays(const Camera& camera, std::span<const double
 void HybridRenderer::castEveryPixelInstead(const Camera& camera, const WorkShare& share,
                                            Framebuffer& fb, FrameStats& stats, Stopwatch& clock) {
   stats.setShared("every_pixel_cast", 1.0);
-  stats.addCount("rays_cast",
-                 double(castEveryPixel(lzb_.embree(), camera, share, fb, options_.threads)));
+  stats.addCount("rays_cast", double(castEveryPixel(lzb_.embree(), camera, share, fb,
+                                                    stats.touchedTiles, options_.threads)));
   stats.addStage("trace", clock.lap());
 }
 
