@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
+#include <memory>
+#include <span>
 #include <vector>
 
 #include "mpi/decomposition.hpp"
@@ -332,77 +334,148 @@ double directSend(const Group& g, Framebuffer& fb, const Rect& u, const Rect& to
 
 namespace {
 
-// The touched tiles of this rank, one after the other: the tile's index, then its keys row by
-// row (unaligned in the byte buffer, so copied by memcpy). Packed in parallel over the tiles.
+// The tiles composite's byte buffers, kept between frames: a fresh 20 MB buffer a frame, zeroed
+// and faulted in page by page, cost milliseconds on a dense 1080p frame.
+struct TileBuffers {
+  std::unique_ptr<char[]> send, receive;
+  size_t sendSize = 0, receiveSize = 0;
+  static char* fit(std::unique_ptr<char[]>& b, size_t& size, size_t need) {
+    if (need > size) b.reset(new char[need]), size = need;  // uninitialised: every byte is written
+    return b.get();
+  }
+};
+TileBuffers& tileBuffers() {
+  static TileBuffers buffers;  // only the main thread composites (mpi/README.md)
+  return buffers;
+}
+
+// A row of n pixels of a tile as the tiles composite sends it (rowBytes(n) bytes at p, p 8-byte
+// aligned): the keys one after the other; whole pixels as their n depths, n colours, n IDs, so
+// that packing is three copies and merging reads contiguous arrays.
 template <class K>
-std::vector<char> packTiles(const Framebuffer& fb, const ScreenTiles& tiles,
-                            const std::vector<uint8_t>& touched) {
+struct TileRows {
+  static size_t rowBytes(int n) { return size_t(n) * sizeof(K); }
+  static void pack(const Framebuffer& fb, size_t i, int n, char* p) {
+    for (int k = 0; k < n; ++k, p += sizeof(K)) {
+      const K key = Keys<K>::of(fb, i + size_t(k));
+      std::memcpy(p, &key, sizeof(K));
+    }
+  }
+  static void merge(Framebuffer& fb, size_t i, int n, const char* p) {
+    for (int k = 0; k < n; ++k, p += sizeof(K)) {
+      K key;
+      std::memcpy(&key, p, sizeof(K));
+      Keys<K>::put(fb, i + size_t(k), Keys<K>::min(Keys<K>::of(fb, i + size_t(k)), key));
+    }
+  }
+};
+
+// Whole pixels with their IDs as Id: uint64_t, or uint32_t where every ID of the scene is below
+// 2^32 - 1 (kNoId truncates to 2^32 - 1 and is restored from it): 12 bytes a pixel instead of 16.
+template <class Id>
+struct PixelRows {
+  static size_t rowBytes(int n) { return size_t(n) * (8 + sizeof(Id)); }
+  static void pack(const Framebuffer& fb, size_t i, int n, char* p) {
+    std::memcpy(p, &fb.depth[i], size_t(n) * 4);
+    std::memcpy(p + 4 * n, &fb.color[i], size_t(n) * 4);
+    if constexpr (sizeof(Id) == 8) {
+      std::memcpy(p + 8 * n, &fb.id[i], size_t(n) * 8);
+    } else {
+      Id id[ScreenTiles::kDefaultSide];
+      for (int k = 0; k < n; ++k) id[k] = Id(fb.id[i + size_t(k)]);
+      std::memcpy(p + 8 * n, id, size_t(n) * sizeof(Id));
+    }
+  }
+  // A higher rank's pixel replaces the lower ranks' only when strictly nearer (Keys<Pixel>::min).
+  static void merge(Framebuffer& fb, size_t i, int n, const char* p) {
+    float depth[ScreenTiles::kDefaultSide];
+    Rgba8 color[ScreenTiles::kDefaultSide];
+    Id id[ScreenTiles::kDefaultSide];
+    std::memcpy(depth, p, size_t(n) * 4);
+    std::memcpy(color, p + 4 * n, size_t(n) * 4);
+    std::memcpy(id, p + 8 * n, size_t(n) * sizeof(Id));
+    for (int k = 0; k < n; ++k) {
+      const size_t j = i + size_t(k);
+      const uint64_t full = id[k] == Id(kNoId) ? kNoId : uint64_t(id[k]);
+      if (!nearer(depth[k], full, fb.depth[j], fb.id[j])) continue;
+      fb.depth[j] = depth[k], fb.color[j] = color[k], fb.id[j] = full;
+    }
+  }
+};
+struct NarrowPixel;  // the 12-byte pixel's tag
+template <>
+struct TileRows<Pixel> : PixelRows<uint64_t> {};
+template <>
+struct TileRows<NarrowPixel> : PixelRows<uint32_t> {};
+
+// A tile as sent: its index (8 bytes, keeping the rows aligned), then its rows.
+size_t tileBytes(const TileRect& r, size_t (*rowBytes)(int)) {
+  return sizeof(int64_t) + size_t(r.y1 - r.y0) * rowBytes(r.x1 - r.x0);
+}
+
+// The touched tiles of this rank, one after the other, packed in parallel over the tiles.
+template <class K>
+std::span<const char> packTiles(const Framebuffer& fb, const ScreenTiles& tiles,
+                                const std::vector<uint8_t>& touched) {
   std::vector<int> list;
   for (int t = 0; t < tiles.count(); ++t)
     if (touched[size_t(t)]) list.push_back(t);
   std::vector<size_t> at(list.size() + 1, 0);
   for (size_t k = 0; k < list.size(); ++k)
-    at[k + 1] = at[k] + sizeof(int) + size_t(tiles.tile(list[k]).pixels()) * sizeof(K);
-  std::vector<char> out(at.back());
+    at[k + 1] = at[k] + tileBytes(tiles.tile(list[k]), &TileRows<K>::rowBytes);
+  TileBuffers& b = tileBuffers();
+  char* out = TileBuffers::fit(b.send, b.sendSize, at.back());
 #pragma omp parallel for schedule(static)
   for (size_t k = 0; k < list.size(); ++k) {
     const TileRect r = tiles.tile(list[k]);
-    char* p = out.data() + at[k];
-    std::memcpy(p, &list[k], sizeof(int));
-    p += sizeof(int);
-    for (int y = r.y0; y < r.y1; ++y)
-      for (int x = r.x0; x < r.x1; ++x, p += sizeof(K)) {
-        const K key = Keys<K>::of(fb, fb.index(x, y));
-        std::memcpy(p, &key, sizeof(K));
-      }
+    char* p = out + at[k];
+    const int64_t index = list[k];
+    std::memcpy(p, &index, sizeof(index));
+    p += sizeof(index);
+    for (int y = r.y0; y < r.y1; ++y, p += TileRows<K>::rowBytes(r.x1 - r.x0))
+      TileRows<K>::pack(fb, fb.index(r.x0, y), r.x1 - r.x0, p);
   }
-  return out;
+  return {out, at.back()};
 }
 
-// One rank's packed tiles [begin, end) of `all` into the root's keys, the nearer key per pixel,
-// in parallel over the tiles (a rank sends each tile once); marks them in `touched`.
+// One rank's packed tiles [begin, end) of `all` into the root's frame, the nearer pixel kept, in
+// parallel over the tiles (a rank sends each tile once); marks them in `touched`.
 template <class K>
-void mergeTiles(const std::vector<char>& all, size_t begin, size_t end, const ScreenTiles& tiles,
+void mergeTiles(const char* all, size_t begin, size_t end, const ScreenTiles& tiles,
                 Framebuffer& fb, std::vector<uint8_t>& touched) {
-  std::vector<size_t> starts;
+  std::vector<std::pair<int, size_t>> sent;  // tile, where its rows start
   for (size_t at = begin; at < end;) {
-    int t;
-    std::memcpy(&t, all.data() + at, sizeof(int));
-    starts.push_back(at);
+    int64_t t;
+    std::memcpy(&t, all + at, sizeof(t));
+    sent.emplace_back(int(t), at + sizeof(t));
     touched[size_t(t)] = 1;
-    at += sizeof(int) + size_t(tiles.tile(t).pixels()) * sizeof(K);
+    at += tileBytes(tiles.tile(int(t)), &TileRows<K>::rowBytes);
   }
 #pragma omp parallel for schedule(static)
-  for (size_t k = 0; k < starts.size(); ++k) {
-    size_t at = starts[k];
-    int t;
-    std::memcpy(&t, all.data() + at, sizeof(int));
-    at += sizeof(int);
-    const TileRect r = tiles.tile(t);
-    for (int y = r.y0; y < r.y1; ++y)
-      for (int x = r.x0; x < r.x1; ++x, at += sizeof(K)) {
-        K key;
-        std::memcpy(&key, all.data() + at, sizeof(K));
-        const size_t i = fb.index(x, y);
-        Keys<K>::put(fb, i, Keys<K>::min(Keys<K>::of(fb, i), key));
-      }
+  for (size_t k = 0; k < sent.size(); ++k) {
+    const TileRect r = tiles.tile(sent[k].first);
+    const char* p = all + sent[k].second;
+    for (int y = r.y0; y < r.y1; ++y, p += TileRows<K>::rowBytes(r.x1 - r.x0))
+      TileRows<K>::merge(fb, fb.index(r.x0, y), r.x1 - r.x0, p);
   }
 }
 
 template <class K>
 double tileSend(const Group& g, Framebuffer& fb, std::vector<uint8_t>& touched) {
   const ScreenTiles tiles(fb.width, fb.height);
-  const std::vector<char> mine = g.root() ? std::vector<char>() : packTiles<K>(fb, tiles, touched);
+  const std::span<const char> mine =
+      g.root() ? std::span<const char>() : packTiles<K>(fb, tiles, touched);
   const int bytes = int(mine.size());
   std::vector<int> counts(g.root() ? size_t(g.size) : 0), displs(counts.size());
   LZB_MPI_CALL(MPI_Gather(&bytes, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, g.comm));
-  std::vector<char> all;
+  char* all = nullptr;
   if (g.root()) {
     size_t total = 0;
     for (int r = 0; r < g.size; ++r) displs[size_t(r)] = int(total), total += size_t(counts[size_t(r)]);
-    all.resize(total);
+    TileBuffers& b = tileBuffers();
+    all = TileBuffers::fit(b.receive, b.receiveSize, total);
   }
-  LZB_MPI_CALL(MPI_Gatherv(mine.data(), bytes, MPI_BYTE, all.data(), counts.data(), displs.data(),
+  LZB_MPI_CALL(MPI_Gatherv(mine.data(), bytes, MPI_BYTE, all, counts.data(), displs.data(),
                            MPI_BYTE, 0, g.comm));
   if (!g.root()) return double(bytes);
   for (int r = 1; r < g.size; ++r)  // in rank order: on equal keys the lower rank's pixel stays
@@ -451,12 +524,13 @@ CompositeStats compositeAtRoot(const Group& g, Framebuffer& fb, CompositeStrateg
 }
 
 CompositeStats compositeWithColour(const Group& g, Framebuffer& fb, CompositeStrategy strategy,
-                                   std::vector<uint8_t>& touched) {
+                                   std::vector<uint8_t>& touched, bool wide) {
   CompositeStats stats;
   if (g.size == 1) return stats;
   Stopwatch clock;
   if (strategy == CompositeStrategy::kTiles) {
-    stats.bytesSent = tileSend<Pixel>(g, fb, touched);
+    stats.bytesSent =
+        wide ? tileSend<Pixel>(g, fb, touched) : tileSend<NarrowPixel>(g, fb, touched);
     stats.seconds = clock.seconds();
     return stats;
   }

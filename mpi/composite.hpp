@@ -43,11 +43,12 @@ struct CompositeStats {
 CompositeStats compositeAtRoot(const Group& g, Framebuffer& fb, CompositeStrategy strategy,
                                bool wide);
 
-// The same with colour carried along, as 16-byte pixels: with kTiles each rank's touched tiles
-// (`touched`, ScreenTiles' grid, mpi/frame_tiles.hpp) to the root, merged in rank order, the root
-// adding the tiles it received to its `touched`; with the other strategies MPI_Reduce over the
-// whole frame (`touched` unused).
+// The same with colour carried along: with kTiles each rank's touched tiles (`touched`,
+// ScreenTiles' grid, mpi/frame_tiles.hpp) to the root as 12-byte pixels (16 when wide: IDs of
+// 2^32 - 1 and above), merged in rank order, the root adding the tiles it received to its
+// `touched`; with the other strategies MPI_Reduce of 16-byte pixels over the whole frame
+// (`touched` unused).
 CompositeStats compositeWithColour(const Group& g, Framebuffer& fb, CompositeStrategy strategy,
-                                   std::vector<uint8_t>& touched);
+                                   std::vector<uint8_t>& touched, bool wide);
 
 }  // namespace lzb::mpi

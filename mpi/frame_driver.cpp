@@ -102,11 +102,6 @@ nlohmann::json FrameDriver::render(Renderer& renderer, const Camera& camera, int
     };
   }
   renderer.render(camera, frame, share, fb, stats);
-  if (g.size > 1) {  // idle until the slowest rank is done, so "composite" is the exchange alone
-    Stopwatch idle;
-    g.barrier();
-    stats.addStage("wait", idle.seconds());
-  }
   const bool fromIds = renderer.colourFromIds();
   // Each rank shades the tiles it touched, at once, and sends them with their colour (the root
   // alone shading the whole frame after the composite cost more), unless the keys go alone.
@@ -125,9 +120,15 @@ nlohmann::json FrameDriver::render(Renderer& renderer, const Camera& camera, int
     shadePixels(scene_, camera, tilePixels(fb, tiles, touched), fb.id, fb.color);
     stats.addStage("shade", shading.seconds());
   }
+  if (g.size > 1) {  // idle until the slowest rank is done, so "composite" is the exchange alone
+    Stopwatch idle;
+    g.barrier();
+    stats.addStage("wait", idle.seconds());
+  }
   const CompositeStats composite =
       keysAlone ? compositeAtRoot(g, fb, strategy_, scene_.expandedTriangles() > 0xffffffffull)
-                : compositeWithColour(g, fb, strategy_, touched);
+                : compositeWithColour(g, fb, strategy_, touched,
+                                      scene_.expandedTriangles() > 0xffffffffull);
   stats.addStage("composite", composite.seconds);
   if (keysAlone && g.root()) {
     Stopwatch shading;

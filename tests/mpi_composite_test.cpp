@@ -79,27 +79,29 @@ class MpiCompositeWithColour : public ::testing::TestWithParam<mpi::CompositeStr
 TEST_P(MpiCompositeWithColour, EqualsSerialComposite) {
   const mpi::Group g = mpi::Group::world();
   const int w = 97, h = 31;
-  Framebuffer mine = bufferOfRank(g.rank, w, h, false);
   const ScreenTiles tiles(w, h);
-  std::vector<uint8_t> touched = touchedTiles(mine, tiles);
-  const mpi::CompositeStats stats = mpi::compositeWithColour(g, mine, GetParam(), touched);
-  if (!g.root()) {
-    if (GetParam() == mpi::CompositeStrategy::kTiles) {
-      // Only the touched tiles: each rank's window leaves some of the frame's tiles out.
-      EXPECT_GT(stats.bytesSent, 0.0);
-      EXPECT_LT(stats.bytesSent, double(w * h * 16));
-    } else {
-      EXPECT_DOUBLE_EQ(stats.bytesSent, double(w * h * 16));
+  for (const bool wide : {false, true}) {
+    Framebuffer mine = bufferOfRank(g.rank, w, h, wide);
+    std::vector<uint8_t> touched = touchedTiles(mine, tiles);
+    const mpi::CompositeStats stats = mpi::compositeWithColour(g, mine, GetParam(), touched, wide);
+    if (!g.root()) {
+      if (GetParam() == mpi::CompositeStrategy::kTiles) {
+        // Only the touched tiles: each rank's window leaves some of the frame's tiles out.
+        EXPECT_GT(stats.bytesSent, 0.0);
+        EXPECT_LT(stats.bytesSent, double(w * h * (wide ? 16 : 12)));
+      } else {
+        EXPECT_DOUBLE_EQ(stats.bytesSent, double(w * h * 16));
+      }
+      continue;
     }
-    return;
-  }
-  const Framebuffer expected = serialComposite(g.size, w, h, false);
-  EXPECT_EQ(mine.id, expected.id);
-  EXPECT_EQ(mine.depth, expected.depth);
-  EXPECT_EQ(mine.color, expected.color);
-  // The root's record holds every tile a rank sent: the tiles the composite covers.
-  if (GetParam() == mpi::CompositeStrategy::kTiles) {
-    EXPECT_EQ(touched, touchedTiles(expected, tiles));
+    const Framebuffer expected = serialComposite(g.size, w, h, wide);
+    EXPECT_EQ(mine.id, expected.id) << "wide " << wide;
+    EXPECT_EQ(mine.depth, expected.depth) << "wide " << wide;
+    EXPECT_EQ(mine.color, expected.color) << "wide " << wide;
+    // The root's record holds every tile a rank sent: the tiles the composite covers.
+    if (GetParam() == mpi::CompositeStrategy::kTiles) {
+      EXPECT_EQ(touched, touchedTiles(expected, tiles));
+    }
   }
 }
 
