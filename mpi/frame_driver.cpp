@@ -109,7 +109,7 @@ nlohmann::json FrameDriver::render(Renderer& renderer, const Camera& camera, int
   const bool keysAlone = fromIds && g.size > 1 && !tileComposite;
   const ScreenTiles tiles(fb.width, fb.height);
   std::vector<uint8_t> touched;
-  if (fromIds ? !keysAlone : tileComposite) {
+  if (!keysAlone && (tileComposite || renderer.colourOnlyWhereCovered())) {
     Stopwatch scan;
     touched = stats.touchedTiles.size() == size_t(tiles.count()) ? std::move(stats.touchedTiles)
                                                                  : touchedTiles(fb, tiles);
@@ -135,9 +135,11 @@ nlohmann::json FrameDriver::render(Renderer& renderer, const Camera& camera, int
     shadeFromIds(scene_, camera, fb);
     stats.addStage("shade", shading.seconds());
   }
-  // Colour from the IDs lies in the touched tiles alone (the root's counting those it received);
-  // a renderer's own colour may spread past them.
-  if (fromIds && !keysAlone) fb.tilesInUse = std::move(touched);
+  // The touched tiles hold the frame's every non-empty pixel (the root's counting those it
+  // received) unless the renderer's own colour spreads past them, or another strategy wrote the
+  // root's frame.
+  if ((g.size == 1 || tileComposite) && renderer.colourOnlyWhereCovered() && !touched.empty())
+    fb.tilesInUse = std::move(touched);
   const double seconds = clock.seconds();
 
   nlohmann::json mine = rankEntry(g.rank, stats);

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "mpi/decomposition.hpp"
+#include "mpi/frame_tiles.hpp"
 #include "src/cli/methods.hpp"
 #include "src/core/error.hpp"
 #include "src/core/frame_probe.hpp"
@@ -138,8 +139,10 @@ class PartRenderer : public Renderer {
       if (inner_[0]) renderOnePart(camera, frame, fb, stats);
       return;
     }
-    owner_.assign(fb.size(), kNoOwner);
+    const ScreenTiles tiles(fb.width, fb.height);
+    owner_.resize(fb.size());
     local_.resize(fb.size());
+    std::vector<uint8_t> all(size_t(tiles.count()), 0);  // the tiles some part covered
     for (size_t p = 0; p < inner_.size(); ++p) {
       if (!inner_[p]) continue;  // an empty part
       Framebuffer& into = scratch(fb, inner_[p]->colourFromIds());
@@ -147,15 +150,23 @@ class PartRenderer : public Renderer {
       inner_[p]->render(camera, frame, WorkShare{0, 1}, into, own);
       addStagesAndCounts(own, stats);
       Stopwatch clock;
-      keepNearerOfPart(uint32_t(p), into, fb);
+      const std::vector<uint8_t> touched = touchedOf(into, tiles, own);
+      for (uint32_t i : tilePixels(fb, tiles, newTiles(touched, all))) owner_[i] = kNoOwner;
+      keepNearerOfPart(uint32_t(p), into, fb, tilePixels(into, tiles, touched));
       stats.addStage("composite regions", clock.seconds());
     }
     Stopwatch clock;
-    shadeWinners(camera, fb);
+    shadeWinners(camera, tilePixels(fb, tiles, all), fb);
     stats.addStage("shade", clock.seconds());
+    stats.touchedTiles = std::move(all);
   }
 
   bool colourFromIds() const override { return false; }
+  // The parts' colour lies where they cover unless a part brings colour of its own.
+  bool colourOnlyWhereCovered() const override {
+    return std::all_of(inner_.begin(), inner_.end(),
+                       [](const auto& r) { return !r || r->colourOnlyWhereCovered(); });
+  }
 
   FrameStats setupStats() const override {
     FrameStats stats;
@@ -215,6 +226,7 @@ class PartRenderer : public Renderer {
   }
   // A rank's one part draws into its frame. Its IDs name its own triangles: shade first, then
   // renumber.
+  // Only the tiles it covered are shaded and renumbered.
   void renderOnePart(const Camera& camera, int frame, Framebuffer& fb, FrameStats& stats) {
     FrameStats own;
     inner_[0]->render(camera, frame, WorkShare{0, 1}, fb, own);
@@ -222,22 +234,42 @@ class PartRenderer : public Renderer {
     // One part of all the rank's regions: its figures are the frame's.
     if (held_.layout == Parts::kOne) stats.shared = own.shared;
     Stopwatch clock;
-    if (inner_[0]->colourFromIds()) shadeFromIds(held_.parts[0].scene, camera, fb);
+    const ScreenTiles tiles(fb.width, fb.height);
+    std::vector<uint8_t> touched = touchedOf(fb, tiles, own);
+    const std::vector<uint32_t> pixels = tilePixels(fb, tiles, touched);
+    if (inner_[0]->colourFromIds())
+      shadePixels(held_.parts[0].scene, camera, pixels, fb.id, fb.color);
     const IdMap& ids = held_.parts[0].ids;
-    const long n = long(fb.id.size());
+    const long n = long(pixels.size());
 #pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i) fb.id[size_t(i)] = ids.global(fb.id[size_t(i)]);
+    for (long k = 0; k < n; ++k) fb.id[pixels[size_t(k)]] = ids.global(fb.id[pixels[size_t(k)]]);
     stats.addStage("shade", clock.seconds());
+    stats.touchedTiles = std::move(touched);
+  }
+  // The tiles a part covered in its frame: its renderer's record, else found from the depths.
+  static std::vector<uint8_t> touchedOf(const Framebuffer& fb, const ScreenTiles& tiles,
+                                        FrameStats& own) {
+    if (own.touchedTiles.size() == size_t(tiles.count())) return std::move(own.touchedTiles);
+    return touchedTiles(fb, tiles);
+  }
+  // The tiles of `touched` not yet in `all`, now added to it.
+  static std::vector<uint8_t> newTiles(const std::vector<uint8_t>& touched,
+                                       std::vector<uint8_t>& all) {
+    std::vector<uint8_t> fresh(touched.size(), 0);
+    for (size_t t = 0; t < touched.size(); ++t)
+      if (touched[t] && !all[t]) fresh[t] = 1, all[t] = 1;
+    return fresh;
   }
   // Part p's frame composited into the rank's by the whole scene's IDs; the winner's part and
   // own ID are kept for shading once at the end (not every part's whole frame). Each covered
   // pixel is emptied on the way, so the scratch frame is left cleared for the next part.
-  void keepNearerOfPart(uint32_t p, Framebuffer& into, Framebuffer& fb) {
+  void keepNearerOfPart(uint32_t p, Framebuffer& into, Framebuffer& fb,
+                        const std::vector<uint32_t>& pixels) {
     const IdMap& ids = held_.parts[p].ids;
-    const long n = long(fb.size());
+    const long n = long(pixels.size());
 #pragma omp parallel for schedule(static)
     for (long k = 0; k < n; ++k) {
-      const size_t i = size_t(k);
+      const size_t i = pixels[size_t(k)];
       if (!into.covered(i) && into.depth[i] == kEmptyDepth) continue;
       const uint64_t id = ids.global(into.id[i]);
       if (into.covered(i) && nearer(into.depth[i], id, fb.depth[i], fb.id[i])) {
@@ -253,15 +285,15 @@ class PartRenderer : public Renderer {
     scratchClear_ = inner_[p]->colourFromIds();
   }
   // Each pixel shaded by the part that won it (parts bringing their own colour keep it).
-  void shadeWinners(const Camera& camera, Framebuffer& fb) {
+  void shadeWinners(const Camera& camera, const std::vector<uint32_t>& covered, Framebuffer& fb) {
     std::vector<uint32_t> start(inner_.size() + 1, 0);
-    for (uint32_t o : owner_)
-      if (o != kNoOwner) ++start[o + 1];
+    for (uint32_t i : covered)
+      if (owner_[i] != kNoOwner) ++start[owner_[i] + 1];
     for (size_t p = 0; p < inner_.size(); ++p) start[p + 1] += start[p];
     pixels_.resize(start.back());
     std::vector<uint32_t> next(start.begin(), start.end() - 1);
-    for (size_t i = 0; i < owner_.size(); ++i)
-      if (owner_[i] != kNoOwner) pixels_[next[owner_[i]]++] = uint32_t(i);
+    for (uint32_t i : covered)
+      if (owner_[i] != kNoOwner) pixels_[next[owner_[i]]++] = i;
     for (size_t p = 0; p < inner_.size(); ++p)
       if (inner_[p] && inner_[p]->colourFromIds())
         shadePixels(held_.parts[p].scene, camera,

@@ -78,6 +78,9 @@ class Renderer {
   virtual void render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
                       FrameStats& stats) = 0;
   virtual bool colourFromIds() const { return true; }
+  // Whether fb's colour is the background wherever fb covers no pixel (so the frame driver clears
+  // only the tiles a frame covered): colour shaded from the IDs is.
+  virtual bool colourOnlyWhereCovered() const { return colourFromIds(); }
   // What building the method's structures took (stages) and made (shared counts), reported once.
   virtual FrameStats setupStats() const { return {}; }
 };
