@@ -225,8 +225,7 @@ class PartRenderer : public Renderer {
     stats.addStage("probe", clock.seconds());
   }
   // A rank's one part draws into its frame. Its IDs name its own triangles: shade first, then
-  // renumber.
-  // Only the tiles it covered are shaded and renumbered.
+  // renumber, both over the tiles it covered alone.
   void renderOnePart(const Camera& camera, int frame, Framebuffer& fb, FrameStats& stats) {
     FrameStats own;
     inner_[0]->render(camera, frame, WorkShare{0, 1}, fb, own);
@@ -261,8 +260,9 @@ class PartRenderer : public Renderer {
     return fresh;
   }
   // Part p's frame composited into the rank's by the whole scene's IDs; the winner's part and
-  // own ID are kept for shading once at the end (not every part's whole frame). Each covered
-  // pixel is emptied on the way, so the scratch frame is left cleared for the next part.
+  // own ID are kept for shading once at the end (not every part's whole frame). `pixels` are
+  // those of the tiles the part covered; each covered one is emptied on the way, so the scratch
+  // frame is left cleared for the next part.
   void keepNearerOfPart(uint32_t p, Framebuffer& into, Framebuffer& fb,
                         const std::vector<uint32_t>& pixels) {
     const IdMap& ids = held_.parts[p].ids;
