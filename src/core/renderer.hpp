@@ -72,9 +72,9 @@ class Renderer {
   // One sentence for the report: how this method splits a frame across ranks.
   virtual std::string decomposition() const = 0;
   // Renders the depth and ID of this rank's share of frame `frame` into fb (already sized and
-  // cleared). Colour is shaded from the IDs after compositing, once, at the root (shadeFromIds,
-  // src/core/shading.hpp); a renderer whose colour is not a function of the IDs fills it in too
-  // and says so with colourFromIds().
+  // cleared). Colour is shaded from the IDs by the frame driver (src/core/shading.hpp, over the
+  // tiles the frame touched, mpi/frame_driver.hpp); a renderer whose colour is not a function of
+  // the IDs fills it in too and says so with colourFromIds().
   virtual void render(const Camera& camera, int frame, const WorkShare& share, Framebuffer& fb,
                       FrameStats& stats) = 0;
   virtual bool colourFromIds() const { return true; }
