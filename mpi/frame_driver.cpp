@@ -111,8 +111,7 @@ nlohmann::json FrameDriver::render(Renderer& renderer, const Camera& camera, int
   std::vector<uint8_t> touched;
   if (!keysAlone && (tileComposite || renderer.colourOnlyWhereCovered())) {
     Stopwatch scan;
-    touched = stats.touchedTiles.size() == size_t(tiles.count()) ? std::move(stats.touchedTiles)
-                                                                 : touchedTiles(fb, tiles);
+    touched = takeTouchedTiles(fb, tiles, stats);
     stats.addStage("touched", scan.seconds());
   }
   if (fromIds && !keysAlone) {

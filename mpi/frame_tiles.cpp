@@ -44,6 +44,12 @@ std::vector<uint8_t> touchedTiles(const Framebuffer& fb, const ScreenTiles& tile
   return touched;
 }
 
+std::vector<uint8_t> takeTouchedTiles(const Framebuffer& fb, const ScreenTiles& tiles,
+                                      FrameStats& stats) {
+  if (stats.touchedTiles.size() == size_t(tiles.count())) return std::move(stats.touchedTiles);
+  return touchedTiles(fb, tiles);
+}
+
 std::vector<uint32_t> tilePixels(const Framebuffer& fb, const ScreenTiles& tiles,
                                  const std::vector<uint8_t>& marked) {
   const std::vector<int> list = markedList(marked);

@@ -8,12 +8,18 @@
 
 #include "mpi/decomposition.hpp"
 #include "src/core/framebuffer.hpp"
+#include "src/core/renderer.hpp"
 
 namespace lzb {
 
 // 1 per tile where fb covers some pixel (a pixel is covered exactly when its depth is not
 // kEmptyDepth, framebuffer.hpp).
 std::vector<uint8_t> touchedTiles(const Framebuffer& fb, const ScreenTiles& tiles);
+
+// The tiles a renderer covered in fb: its record (stats.touchedTiles, taken) when it kept one,
+// else touchedTiles(fb, tiles).
+std::vector<uint8_t> takeTouchedTiles(const Framebuffer& fb, const ScreenTiles& tiles,
+                                      FrameStats& stats);
 
 // The pixel indices of the marked tiles, tile by tile in tile order, row by row within a tile.
 std::vector<uint32_t> tilePixels(const Framebuffer& fb, const ScreenTiles& tiles,

@@ -150,7 +150,7 @@ class PartRenderer : public Renderer {
       inner_[p]->render(camera, frame, WorkShare{0, 1}, into, own);
       addStagesAndCounts(own, stats);
       Stopwatch clock;
-      const std::vector<uint8_t> touched = touchedOf(into, tiles, own);
+      const std::vector<uint8_t> touched = takeTouchedTiles(into, tiles, own);
       for (uint32_t i : tilePixels(fb, tiles, newTiles(touched, all))) owner_[i] = kNoOwner;
       keepNearerOfPart(uint32_t(p), into, fb, tilePixels(into, tiles, touched));
       stats.addStage("composite regions", clock.seconds());
@@ -234,7 +234,7 @@ class PartRenderer : public Renderer {
     if (held_.layout == Parts::kOne) stats.shared = own.shared;
     Stopwatch clock;
     const ScreenTiles tiles(fb.width, fb.height);
-    std::vector<uint8_t> touched = touchedOf(fb, tiles, own);
+    std::vector<uint8_t> touched = takeTouchedTiles(fb, tiles, own);
     const std::vector<uint32_t> pixels = tilePixels(fb, tiles, touched);
     if (inner_[0]->colourFromIds())
       shadePixels(held_.parts[0].scene, camera, pixels, fb.id, fb.color);
@@ -244,12 +244,6 @@ class PartRenderer : public Renderer {
     for (long k = 0; k < n; ++k) fb.id[pixels[size_t(k)]] = ids.global(fb.id[pixels[size_t(k)]]);
     stats.addStage("shade", clock.seconds());
     stats.touchedTiles = std::move(touched);
-  }
-  // The tiles a part covered in its frame: its renderer's record, else found from the depths.
-  static std::vector<uint8_t> touchedOf(const Framebuffer& fb, const ScreenTiles& tiles,
-                                        FrameStats& own) {
-    if (own.touchedTiles.size() == size_t(tiles.count())) return std::move(own.touchedTiles);
-    return touchedTiles(fb, tiles);
   }
   // The tiles of `touched` not yet in `all`, now added to it.
   static std::vector<uint8_t> newTiles(const std::vector<uint8_t>& touched,
