@@ -17,6 +17,7 @@
 // expanded ID, leaf tree, mesh index). Hot loops are templates over the sink: no allocation,
 // virtual call or std::function per sample.
 #include <algorithm>
+#include <concepts>
 #include <cstdint>
 #include <glm/glm.hpp>
 
@@ -28,6 +29,8 @@
 namespace lzb::rzb {
 
 constexpr uint32_t kDrawBatch = 4096;
+// How many samples ahead drawBoxSamples fetches the records its walk picked.
+constexpr uint64_t kWalkAhead = 32;
 
 // Philox words of samples [first, first + n) of a box (n <= kDrawBatch): w[k][i] is word k of
 // sample first + i. A per-thread buffer valid until the next call on this thread.
@@ -141,13 +144,118 @@ void descendGroup(Descent* group, uint32_t n, const SampleStream& stream, uint64
   }
 }
 
+// A sink that takes camera-space points (the point pass): drawBoxSamples then tests back faces
+// and moves points to camera space itself, in the frame of the triangle's own tree, with one
+// transform per instance entry a run of samples lands in, instead of composing the box frame's
+// position and normal for every sample.
+template <class Sink>
+concept CameraSink = requires(Sink& s, float x, uint64_t id) {
+  { s.dropBackfaces } -> std::convertible_to<bool>;
+  s.point(x, x, x, id);  // camera space, expanded ID
+  s.backfacing();        // a sample dropped on a back face
+};
+
+// A sample at p on a triangle whose normal points along n (both in one frame, with the eye there
+// and the map from there to camera space) to a CameraSink.
+template <class Sink>
+[[gnu::always_inline]] inline void land(Sink& sink, const glm::dvec3& p, const glm::dvec3& n,
+                                        const glm::dvec3& eye, const Affine& toCam, uint64_t id) {
+  if (sink.dropBackfaces && glm::dot(n, eye - p) < 0.0) return sink.backfacing();
+  const glm::dvec3 q = toCam.point(p);
+  sink.point(float(q.x), float(q.y), float(q.z), id);
+}
+
+// Samples of one box that entered instance entries whose child trees hold triangles only: their
+// alias picks wait here in groups, so that the slot and record loads of a group overlap (as in
+// descendGroup), and land through their entry's transform straight into camera space.
+class LeafGroups {
+ public:
+  // The instance entry `instance` of tree: what its samples share.
+  struct Run {
+    const DistributionTree* child = nullptr;
+    Affine toCam;    // child frame -> camera space
+    glm::dvec3 eye;  // the eye in the child frame
+    uint64_t idBase = 0;
+  };
+
+  // Run for entry `instance` of `tree` in a box placed by toCam, eye in the box frame; null when
+  // the entry's child holds instances (the general descent takes it).
+  const Run* enter(const DistributionTree& tree, uint32_t instance, const Affine& toCam,
+                   const glm::dvec3& eye, uint64_t idBase) {
+    if (instance == instance_) return run_.child ? &run_ : nullptr;
+    instance_ = instance;
+    const InstanceHot& r = tree.instanceHot(instance);
+    run_.child = r.child->instanceCount() == 0 && r.child->aliasSize() ? r.child : nullptr;
+    if (!run_.child) return nullptr;
+    Affine place{glm::dmat3(1.0), r.t};
+    if (r.linear) place.a = tree.instance(r.linear - 1).transform.a;
+    run_.toCam = toCam * place;
+    // The back-face test keeps its sign in the child frame: the box frame's normal is the
+    // child's turned by the linear part's cofactor, times detSign, a factor |det| in all.
+    run_.eye = glm::inverse(place.a) * (eye - r.t);
+    run_.idBase = idBase + r.idOffset;
+    return &run_;
+  }
+
+  // A sample with pick number rem (in [0, 1)) and barycentric (a, c) into run.
+  template <class Sink>
+  void add(const Run& run, double rem, float a, float c, Sink& sink) {
+    const size_t size = run.child->aliasSize();
+    const double x = rem * double(size);
+    const uint32_t pos = uint32_t(std::min(x, double(size - 1)));
+    run.child->prefetchAliasSlot(pos);
+    if (runs_ == 0 || slots_[runs_ - 1].child != run.child ||
+        slots_[runs_ - 1].idBase != run.idBase)
+      slots_[runs_++] = run;
+    picks_[n_++] = Pick{x - double(pos), pos, a, c, uint8_t(runs_ - 1)};
+    if (n_ == kDescentGroup || runs_ == kDescentGroup) flush(sink);
+  }
+
+  // Lands every waiting sample: slots read (records prefetched), then records read.
+  template <class Sink>
+  void flush(Sink& sink) {
+    for (uint32_t k = 0; k < n_; ++k) {
+      Pick& q = picks_[k];
+      const DistributionTree* child = slots_[q.run].child;
+      const AliasSlot& slot = child->aliasTable()[q.pos];
+      q.pos = q.rem < slot.prob ? q.pos : slot.alias;
+      child->prefetchRec(q.pos);
+    }
+    for (uint32_t k = 0; k < n_; ++k) {
+      const Pick& q = picks_[k];
+      const Run& run = slots_[q.run];
+      const EntryRec& e = run.child->rec(q.pos);
+      const glm::vec3 p = e.v0 + q.a * e.e1 + q.c * e.e2;
+      land(sink, glm::dvec3(p), glm::dvec3(glm::cross(e.e1, e.e2)), run.eye, run.toCam,
+           run.idBase + e.ref);
+    }
+    n_ = 0;
+    runs_ = 0;
+    if (run_.child) slots_[runs_++] = run_;  // the current run stays first
+  }
+
+ private:
+  struct Pick {
+    double rem;
+    uint32_t pos;
+    float a, c;
+    uint8_t run;
+  };
+  Run run_;
+  uint32_t instance_ = ~0u;
+  Run slots_[kDescentGroup];
+  Pick picks_[kDescentGroup];
+  uint32_t n_ = 0, runs_ = 0;
+};
+
 // Samples [first, first + count) of the `total` samples of box. Sink: void(const dvec3& p,
 // const dvec3& n, uint64_t id, const DistributionTree* leaf, uint32_t meshIndex), and optionally
-// flush(), called after every batch of kDrawBatch samples.
+// flush(), called after every batch of kDrawBatch samples; or a CameraSink.
 template <class Sink>
 void drawBoxSamples(const SelectedBox& box, const SampleStream& stream, uint64_t first,
                     uint64_t count, uint64_t total, Sink& sink) {
   if (!count) return;
+  constexpr bool kCamera = CameraSink<Sink>;
   const DistributionTree& tree = *box.tree;
   const EntryRec* recs = tree.recs();
   const bool clean = tree.clean(box.node);
@@ -164,45 +272,90 @@ void drawBoxSamples(const SelectedBox& box, const SampleStream& stream, uint64_t
   uint64_t j = b;
   Descent group[kDescentGroup];
   uint32_t grouped = 0;
+  LeafGroups leaves;
   const auto descend = [&] {
-    descendGroup(group, grouped, stream, box.key,
-                 [&](const DescentHit& h) { sink(h.p, h.n, h.id, h.leaf, h.meshIndex); });
+    descendGroup(group, grouped, stream, box.key, [&](const DescentHit& h) {
+      if constexpr (kCamera) {
+        land(sink, h.p, h.n, box.eyeLocal, box.toCamera, h.id);
+      } else {
+        sink(h.p, h.n, h.id, h.leaf, h.meshIndex);
+      }
+    });
     grouped = 0;
   };
+  // The entry whose area split was computed last (one division per entry, not per sample).
+  uint64_t splitEntry = ~uint64_t(0);
+  double before = 0.0, ia = 0.0;
+  // Per batch, first every sample's entry (a walk over the prefix sums alone), then the entries'
+  // records, fetched a few samples ahead: the walk skips a few entries a sample, too far apart in
+  // the records for the hardware's prefetch.
+  uint64_t picked[kDrawBatch];
+  double targets[kDrawBatch];  // clean: the target in the list; else the pick's remainder
+  double dirtyRes[kDrawBatch];
   for (uint64_t s0 = first; s0 < first + count; s0 += kDrawBatch) {
     const uint32_t n = uint32_t(std::min<uint64_t>(kDrawBatch, first + count - s0));
     const DrawWords d = batchDraws(stream, box.key, s0, n);
     for (uint32_t k = 0; k < n; ++k) {
-      const uint64_t i = s0 + k;
       // 32 bits of jitter are ample inside a stratum; word 1 stays spare for a deep descent.
       const double jitter = (double(d.w[0][k]) + 0.5) * 0x1p-32;
-      const double u = std::min((double(i) + jitter) * inv, 1.0 - 0x1p-53);
+      const double u = std::min((double(s0 + k) + jitter) * inv, 1.0 - 0x1p-53);
+      if (clean) {
+        targets[k] = base + u * span;
+        j = searchForward(P, e, j, targets[k]);
+      } else {
+        j = tree.pick(box.node, box.part, u, targets[k], dirtyRes[k]);
+      }
+      picked[k] = j;
+    }
+    for (uint32_t k = 0; k < n; ++k) {
+      const uint64_t i = s0 + k;
+      if (k + kWalkAhead < n) tree.prefetchRec(uint32_t(picked[k + kWalkAhead]));
+      j = picked[k];
       float a = unit24(d.w[2][k]), c = unit24(d.w[3][k]);
       foldUnitSquare(a, c);
       double rem = 0.0, res = 0x1p-32 * inv;
       if (clean) {
-        const double target = base + u * span;
-        j = searchForward(P, e, j, target);
         if (recs[j].instance()) {
-          const double before = j ? P[j - 1] : 0.0, area = P[j] - before;
-          const double ia = area > 0.0 ? 1.0 / area : 0.0;
-          rem = area > 0.0 ? glm::clamp((target - before) * ia, 0.0, 1.0 - 0x1p-53) : 0.5;
-          res = area > 0.0 ? (span * res + top * 0x1p-52) * ia : 1.0;
+          const double target = targets[k];
+          if (j != splitEntry) {
+            splitEntry = j;
+            before = j ? P[j - 1] : 0.0;
+            const double area = P[j] - before;
+            ia = area > 0.0 ? 1.0 / area : 0.0;
+          }
+          rem = ia > 0.0 ? glm::clamp((target - before) * ia, 0.0, 1.0 - 0x1p-53) : 0.5;
+          res = ia > 0.0 ? (span * res + top * 0x1p-52) * ia : 1.0;
         }
       } else {
-        j = tree.pick(box.node, box.part, u, rem, res);
+        rem = targets[k];
+        res = dirtyRes[k];
       }
       const EntryRec& r = recs[j];
       if (!r.instance()) {
         // In float, as exact as the vertices themselves; the transform to camera space is double.
         const glm::vec3 p = r.v0 + a * r.e1 + c * r.e2;
-        sink(glm::dvec3(p), glm::dvec3(glm::cross(r.e1, r.e2)), box.idBase + r.ref, &tree, r.ref);
+        if constexpr (kCamera) {
+          land(sink, glm::dvec3(p), glm::dvec3(glm::cross(r.e1, r.e2)), box.eyeLocal, box.toCamera,
+               box.idBase + r.ref);
+        } else {
+          sink(glm::dvec3(p), glm::dvec3(glm::cross(r.e1, r.e2)), box.idBase + r.ref, &tree, r.ref);
+        }
         continue;
+      }
+      if constexpr (kCamera) {
+        if (const LeafGroups::Run* run =
+                leaves.enter(tree, r.index(), box.toCamera, box.eyeLocal, box.idBase)) {
+          // As enterEntry refreshes a pick number left with fewer than 16 bits.
+          if (res > 0x1p-16) rem = (double(d.w[1][k]) + 0.5) * 0x1p-32;
+          leaves.add(*run, rem, a, c, sink);
+          continue;
+        }
       }
       startDescent(group[grouped++], &tree, r.index(), rem, res, d.w[1][k], box.idBase, i, a, c);
       if (grouped == kDescentGroup) descend();
     }
     descend();
+    if constexpr (kCamera) leaves.flush(sink);
     // A sink may buffer a batch (e.g. to splat it after the tree lookups, so the two working sets
     // do not evict each other from the cache).
     if constexpr (requires { sink.flush(); }) sink.flush();

@@ -30,8 +30,8 @@ struct Counters {
   uint64_t drawn = 0, back = 0, splatted = 0;
 };
 
-// The sink of a box's samples (drawn or cached): back faces dropped, points to camera space,
-// then the splatting core.
+// The sink of a box's samples (drawn: a CameraSink; or cached): back faces dropped, points to
+// camera space, then the splatting core.
 template <bool kWide, bool kPixel>
 struct BoxSplatter {
   PointSplatter<kWide, kPixel> out;
@@ -42,28 +42,14 @@ struct BoxSplatter {
 
   BoxSplatter(const SplatSetup& setup, KeyBuffer& kb, bool drop) : out(setup, kb), dropBackfaces(drop) {}
 
-  inline void operator()(const glm::dvec3& p, const glm::dvec3& n, uint64_t id,
-                         const DistributionTree*, uint32_t) {
-    if (dropBackfaces && glm::dot(n, eye - p) < 0.0) {
-      ++c.back;
-      return;
-    }
-    const glm::dvec3 q = toCam.point(p);
-    out.add(float(q.x), float(q.y), float(q.z), id);
-  }
-
   void flush() { out.flush(); }
+  // The camera-space path of drawBoxSamples (CameraSink).
+  void point(float x, float y, float z, uint64_t id) { out.add(x, y, z, id); }
+  void backfacing() { ++c.back; }
 
   inline void cached(const CachedSample* first, uint64_t count) {
-    for (const CachedSample* cs = first; cs != first + count; ++cs) {
-      const glm::dvec3 p(cs->p);
-      if (dropBackfaces && glm::dot(normalDirection(cs->normal), eye - p) < 0.0) {
-        ++c.back;
-        continue;
-      }
-      const glm::dvec3 q = toCam.point(p);
-      out.add(float(q.x), float(q.y), float(q.z), cs->id);
-    }
+    for (const CachedSample* cs = first; cs != first + count; ++cs)
+      land(*this, glm::dvec3(cs->p), normalDirection(cs->normal), eye, toCam, cs->id);
     flush();
   }
 

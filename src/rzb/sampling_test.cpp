@@ -2,15 +2,16 @@
 // on a triangle, and coverage of a screen-filling plane against the coupon-collector expectation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
-#include "src/rzb/box_sampler.hpp"
 #include "src/image/metrics.hpp"
+#include "src/rzb/box_sampler.hpp"
 #include "src/rzb/rzb_renderer.hpp"
+#include "src/rzb/sample_scene.hpp"
 #include "src/scene/load.hpp"
 #include "src/zbuffer/zbuffer_renderer.hpp"
-#include "src/rzb/sample_scene.hpp"
 #include "tests/support/cameras.hpp"
 #include "tests/support/options.hpp"
 #include "tests/support/render.hpp"
@@ -96,6 +97,71 @@ TEST(Sampling, TrianglesArePickedInProportionToArea) {
   const SelectedBox dbox = wholeBox(dyn, dyn.classes()[0].root);
   drawBoxSamples(dbox, stream, 0, n, n, sink);
   EXPECT_LT(chiSquare(count, p, n), 31.3);
+}
+
+// The point pass's camera-space path (a CameraSink: back faces tested in each triangle's own
+// tree, one transform per instance entry) lands the same samples with the same IDs, within float
+// rounding, and drops the same back faces as the box-frame position and normal of every sample.
+TEST(Sampling, CameraSinkLandsTheSamplesOfTheBoxFramePath) {
+  const Scene scene = loadScene("builtin:forest?trees=16&levels=1", true);
+  const RzbParams p;
+  RzbRenderer r(scene, test::renderOptions("rzb", 1, 7), p);
+  const Camera camera = test::sceneCamera(scene, 160, 120);
+  SelectParams sp;
+  sp.eps = p.eps;
+  sp.samplesPerPixel = p.samplesPerPixel(160.0 * 120.0);
+  sp.fallbackPx = p.fallbackThreshold(160.0 * 120.0);
+  const SampleStream stream(7, 1);
+  const Selection sel = selectBoxes(r.sampleScene(), camera, sp, stream);
+  struct Landed {
+    uint64_t id;
+    glm::vec3 q;
+    bool operator<(const Landed& o) const {
+      return id != o.id     ? id < o.id
+             : q.x != o.q.x ? q.x < o.q.x
+             : q.y != o.q.y ? q.y < o.q.y
+                            : q.z < o.q.z;
+    }
+  };
+  struct Camera {
+    bool dropBackfaces = true;
+    std::vector<Landed> out;
+    uint64_t back = 0;
+    void point(float x, float y, float z, uint64_t id) { out.push_back({id, {x, y, z}}); }
+    void backfacing() { ++back; }
+  };
+  static_assert(CameraSink<Camera>);
+  uint64_t leafInstanceBoxes = 0, compared = 0;
+  for (const SelectedBox& box : sel.boxes) {
+    if (box.fallback || box.samples == 0) continue;
+    for (uint32_t i = 0; i < box.tree->instanceCount(); ++i)
+      if (box.tree->instanceHot(i).child->instanceCount() == 0) {
+        ++leafInstanceBoxes;
+        break;
+      }
+    std::vector<Landed> plain;
+    uint64_t plainBack = 0;
+    auto sink = [&](const glm::dvec3& q, const glm::dvec3& n, uint64_t id, const DistributionTree*,
+                    uint32_t) {
+      if (glm::dot(n, box.eyeLocal - q) < 0.0) return void(++plainBack);
+      plain.push_back({id, glm::vec3(box.toCamera.point(q))});
+    };
+    drawBoxSamples(box, stream, 0, box.samples, box.samples, sink);
+    Camera cam;
+    drawBoxSamples(box, stream, 0, box.samples, box.samples, cam);
+    ASSERT_EQ(cam.back, plainBack);
+    ASSERT_EQ(cam.out.size(), plain.size());
+    std::sort(plain.begin(), plain.end());
+    std::sort(cam.out.begin(), cam.out.end());
+    for (size_t k = 0; k < plain.size(); ++k) {
+      ASSERT_EQ(cam.out[k].id, plain[k].id);
+      const float tol = 1e-5f * (1.0f + glm::length(plain[k].q));
+      ASSERT_LT(glm::length(cam.out[k].q - plain[k].q), tol) << k;
+    }
+    compared += plain.size();
+  }
+  EXPECT_GT(leafInstanceBoxes, 0u);  // the path through instance entries was taken
+  EXPECT_GT(compared, 10000u);
 }
 
 TEST(Sampling, PointsAreUniformOnTheTriangle) {
