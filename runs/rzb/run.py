@@ -37,7 +37,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 HERE = os.path.join(ROOT, "runs", "rzb")
 BUILD = os.environ.get("LZB_BUILD", os.path.join(ROOT, "build"))
 LZB = os.path.join(BUILD, "lzb")
-TEST = os.path.join(BUILD, "src", "rzb_test")
+TEST = os.path.join(BUILD, "src", "rzb", "rzb_test")
 DATA = os.path.join(BUILD, "data") if os.path.isdir(os.path.join(BUILD, "data")) else os.path.join(ROOT, "build", "data")
 THREADS = 2
 quick = "--quick" in sys.argv
@@ -156,16 +156,18 @@ def vs_zbuffer():
 
 # ---------------------------------------------------------------------------------------------
 def throughput():
+    # The forest and the field of 1600 armadillos are runs/peers' scenes (sub-pixel triangles).
     scenes = ["builtin:chessboard?n=64", os.path.join(DATA, "bunny00.off"), "builtin:forest?levels=3",
-              "builtin:chessboard?n=1048576"]
+              "builtin:chessboard?n=1048576", "builtin:forest",
+              f"builtin:replicated?mesh={os.path.join(DATA, 'armadillo.off')}&k=40&levels=1"]
     if quick:
         scenes = scenes[:2]
     if not plot_only:
         rows = []
         for s in scenes:
-            # Point pass only, except the forest, whose large terrain triangles at the near plane
-            # go to the fallback (the point pass alone would cap those boxes).
-            fallback = "auto" if "forest" in s else "off"
+            # Point pass only, except the forest and the field, whose large triangles near the
+            # camera go to the fallback as by default (the point pass alone would cap those boxes).
+            fallback = "auto" if "forest" in s or "replicated" in s else "off"
             for j in bench("PointPassParts", {"RZB_BENCH_SCENE": s, "RZB_BENCH_FALLBACK": fallback}):
                 rows.append(j)
                 print(f"{s}: {j['splat_per_s'] / 1e6:.1f} M samples/s, scatter limit "
