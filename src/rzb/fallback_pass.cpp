@@ -6,13 +6,34 @@
 
 namespace lzb::rzb {
 
-DrawLists fallbackLists(const std::vector<SelectedBox>& boxes, const std::vector<uint32_t>& mine) {
+void ascendingOnce(std::vector<uint32_t>& triangles, uint32_t meshSize) {
+  if (uint64_t(triangles.size()) * 16 < meshSize) {
+    std::sort(triangles.begin(), triangles.end());
+    triangles.erase(std::unique(triangles.begin(), triangles.end()), triangles.end());
+    return;
+  }
+  std::vector<uint64_t> present((size_t(meshSize) + 63) / 64, 0);
+  for (const uint32_t t : triangles) present[t >> 6] |= uint64_t(1) << (t & 63);
+  triangles.clear();
+  for (size_t w = 0; w < present.size(); ++w)
+    for (uint64_t bits = present[w]; bits; bits &= bits - 1)
+      triangles.push_back(uint32_t(w * 64 + size_t(__builtin_ctzll(bits))));
+}
+
+DrawLists fallbackLists(const std::vector<SelectedBox>& boxes, const std::vector<uint32_t>& mine,
+                        int threads) {
   // Keyed by (ID base, scene node): ascending keys are ascending IDs, path by path.
-  std::map<std::tuple<uint64_t, uint32_t>, DrawList> groups;
+  struct Group {
+    DrawList list;
+    uint32_t meshSize = 0;
+  };
+  std::map<std::tuple<uint64_t, uint32_t>, Group> groups;
   for (uint32_t i : mine) {
     const SelectedBox& b = boxes[i];
     if (!b.fallback) continue;
-    DrawList& g = groups[{b.idBase, b.tree->sceneNode()}];
+    Group& group = groups[{b.idBase, b.tree->sceneNode()}];
+    group.meshSize = uint32_t(b.tree->mesh().size());
+    DrawList& g = group.list;
     g.node = b.tree->sceneNode();
     g.idBase = b.idBase;
     g.world = b.toWorld.matrix();
@@ -21,13 +42,18 @@ DrawLists fallbackLists(const std::vector<SelectedBox>& boxes, const std::vector
       if (!e.instance()) g.triangles.push_back(e.ref);
     });
   }
+  std::vector<Group> sorted;
+  sorted.reserve(groups.size());
+  for (auto& [key, g] : groups) sorted.push_back(std::move(g));
+  const long n = long(sorted.size());
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+  for (long k = 0; k < n; ++k)
+    ascendingOnce(sorted[size_t(k)].list.triangles, sorted[size_t(k)].meshSize);
   DrawLists lists;
-  lists.lists.reserve(groups.size());
-  for (auto& [key, g] : groups) {
-    std::sort(g.triangles.begin(), g.triangles.end());
-    g.triangles.erase(std::unique(g.triangles.begin(), g.triangles.end()), g.triangles.end());
-    lists.triangles += g.triangles.size();
-    lists.lists.push_back(std::move(g));
+  lists.lists.reserve(sorted.size());
+  for (Group& g : sorted) {
+    lists.triangles += g.list.triangles.size();
+    lists.lists.push_back(std::move(g.list));
   }
   return lists;
 }
@@ -36,7 +62,7 @@ bool FallbackPass::draw(const Camera& camera, const std::vector<SelectedBox>& bo
                         const std::vector<uint32_t>& mine, Framebuffer& fb,
                         FallbackCounts& counts) {
   for (uint32_t i : mine) counts.boxes += boxes[i].fallback;
-  const DrawLists lists = fallbackLists(boxes, mine);
+  const DrawLists lists = fallbackLists(boxes, mine, threads_);
   if (lists.lists.empty()) return false;
   if (render_ == FallbackRender::kNative)
     drawNative(camera, lists, fb);

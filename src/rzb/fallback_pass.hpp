@@ -23,9 +23,15 @@ struct FallbackCounts {
   uint64_t boxes = 0, triangles = 0, drawCalls = 0;
 };
 
+// Sorts mesh indices (each below meshSize) and drops repeats: through a bitmap of the mesh where
+// the list is dense in it (a whole instance's mesh: a field of scanned meshes sends millions of
+// fallback triangles a frame), else by sorting.
+void ascendingOnce(std::vector<uint32_t>& triangles, uint32_t meshSize);
+
 // The triangles of the fallback boxes among boxes[mine] as draw lists: per (ID base, scene node),
-// ascending, each triangle once; lists in ascending ID base.
-DrawLists fallbackLists(const std::vector<SelectedBox>& boxes, const std::vector<uint32_t>& mine);
+// ascending, each triangle once; lists in ascending ID base; sorted on `threads` threads.
+DrawLists fallbackLists(const std::vector<SelectedBox>& boxes, const std::vector<uint32_t>& mine,
+                        int threads);
 
 class FallbackPass {
  public:

@@ -6,9 +6,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <random>
 
 #include "src/image/metrics.hpp"
 #include "src/rzb/rzb_renderer.hpp"
@@ -186,6 +188,22 @@ void expectNativeMatchesGl(const Scene& scene, const Camera& camera, const std::
   EXPECT_LE(d.nativeDepthError, 1e-6) << name;
   EXPECT_EQ(other, 0) << name;
   EXPECT_LE(double(frameDiffer - d.differ), maxDifferRate * double(d.covered)) << name;
+}
+
+TEST(RzbFallback, DrawListsAreAscendingOnceDenseOrSparse) {
+  std::mt19937 rng(3);
+  // Dense lists (the bitmap) and sparse ones (the sort), with repeats and the mesh's last index.
+  for (const auto& [meshSize, count] : {std::pair{1000u, 3000u}, std::pair{1000u, 70u},
+                                        std::pair{1u << 20, 100u}, std::pair{64u, 64u}}) {
+    std::vector<uint32_t> list(count);
+    for (uint32_t& t : list) t = rng() % meshSize;
+    list.back() = meshSize - 1;
+    std::vector<uint32_t> expected = list;
+    std::sort(expected.begin(), expected.end());
+    expected.erase(std::unique(expected.begin(), expected.end()), expected.end());
+    ascendingOnce(list, meshSize);
+    EXPECT_EQ(list, expected) << meshSize << " " << count;
+  }
 }
 
 TEST(RzbFallback, NativeMatchesOsMesaOnTheCity) {
