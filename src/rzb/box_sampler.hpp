@@ -303,6 +303,9 @@ void drawBoxSamples(const SelectedBox& box, const SampleStream& stream, uint64_t
         targets[k] = base + u * span;
         j = searchForward(P, e, j, targets[k]);
       } else {
+        // The pick reads the resolution so far (that of u) and leaves the remainder's.
+        targets[k] = 0.0;
+        dirtyRes[k] = 0x1p-32 * inv;
         j = tree.pick(box.node, box.part, u, targets[k], dirtyRes[k]);
       }
       picked[k] = j;
