@@ -15,7 +15,9 @@ same choice and counts on every rank count.
 The landscape, two binary PLY files (the city exported, and a terrain far from the origin that
 the loader stores recentred) and the bunny (a scan's OFF) are streamed, each rank keeping only its
 triangles; the city generated is loaded whole and cut, and so is a TOML scene placing two mesh
-files, each cut into its triangles (with 7 regions every rank must hold some).
+files, each cut into its triangles (with 7 regions every rank must hold some). A procedural
+terrain is cut into its triangles too (every rank holds some), except for sqrt5, which samples
+the object's definition and so gets it whole on one rank.
 
 usage: mpi_distribute.py LZB MPIEXEC WORK [DATA]
 """
@@ -34,6 +36,7 @@ APPROXIMATE = ["lzb", "hybrid", "rzb", "surfels", "sqrt5", "sampletree"]
 # Coarse surfel grids: surfelizing at the default resolution is most of a small run's time.
 OWN = {"surfels": ["--surfel-grids", "1,2,4,8,16,32"]}
 SCENES = ["builtin:city?blocks=3", "builtin:landscape", "builtin:sphereflake?depth=2"]
+TERRAIN = "builtin:terrain?tess=48"  # procedural: 4,608 triangles
 RANKS = [1, 2, 3]
 REGIONS = [2, 7]
 FILES = ["frame_0000.png", "frame_0000.exr", "frame_0001.png", "frame_0001.exr"]
@@ -76,12 +79,15 @@ def make_files(lzb, work):
 
 def scenes(work, data, method):
     """The exact methods' scenes; the others leave out the far terrain (the sample tree refuses
-    it), the TOML scene (cut as the city is) and the bunny (streamed as the PLY files are)."""
+    it), the TOML scene (cut as the city is) and the bunny (streamed as the PLY files are), and
+    all but sqrt5 the procedural terrain (cut as the city is). A scene's index is the same for
+    every method (the approximate runs are checked against raycast's of the same index)."""
     files = [os.path.join(work, "city.ply")]
     if method not in EXACT:
-        return SCENES + files
+        return SCENES + files + ([TERRAIN] if method == "sqrt5" else [])
     bunny = os.path.join(data, "bunny00.off") if data else ""
-    return SCENES + files + [os.path.join(work, "far.ply"), os.path.join(work, "two.toml")] + (
+    return SCENES + files + [TERRAIN, os.path.join(work, "far.ply"),
+                             os.path.join(work, "two.toml")] + (
         [bunny] if bunny and os.path.exists(bunny) and os.path.getsize(bunny) else [])
 
 
@@ -147,7 +153,12 @@ def check_run(lzb, work, name, replicated):
     assert sum(shares) == groups * one["scene"]["triangles_expanded"], ("held", shares)
     regions_held = [r["counts"]["held_regions"] for r in rep["setup"]["ranks"]]
     assert sum(regions_held) == groups * regions, ("regions held", regions_held)
-    if regions >= rep["ranks"]:
+    whole_object = prefix_of(name).startswith("sqrt5") and rep["scene"]["source"] == TERRAIN
+    if whole_object:
+        # sqrt5 samples the terrain's definition: the object stays one unit, on one rank a group.
+        total = one["scene"]["triangles_expanded"]
+        assert all(s in (0, total) for s in shares), ("the terrain cut for sqrt5", shares)
+    elif regions >= rep["ranks"]:
         assert all(s > 0 for s in shares), ("a rank holds nothing", shares)
     if prefix_of(name).split("_")[0] in APPROXIMATE:
         # Every region drawn: the covered pixels within 10 % of the exact image's (measured:

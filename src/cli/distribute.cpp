@@ -60,6 +60,10 @@ Parts partsFor(const std::string& method) {
   return methodNamed(method, "--method").exact() ? Parts::kOne : Parts::kPerRegion;
 }
 
+bool wholeProceduralFor(const std::string& method) {
+  return methodNamed(method, "--method").samplesProceduralObjects();
+}
+
 uint32_t partCount(const HeldShare& held, Parts layout) {
   return layout == Parts::kOne ? 1 : uint32_t(held.mine.size());
 }
@@ -83,9 +87,9 @@ WeightedUnits weigh(const Scene& whole, const SceneUnits& units) {
 }  // namespace
 
 std::vector<uint64_t> trianglesPerRank(const Scene& whole, uint32_t regions, Parts layout,
-                                       int ranks) {
+                                       bool wholeProcedural, int ranks) {
   if (!regions) regions = defaultRegions(whole.uniqueTriangles(), layout);
-  const SceneUnits units = sceneUnits(whole, regions);
+  const SceneUnits units = sceneUnits(whole, regions, wholeProcedural);
   const WeightedUnits w = weigh(whole, units);
   const std::vector<uint64_t> regionTriangles =
       trianglesOfRegions(splitIntoRegions(w.centres, w.triangles, regions), w.triangles, regions);
@@ -96,10 +100,11 @@ std::vector<uint64_t> trianglesPerRank(const Scene& whole, uint32_t regions, Par
   return held;
 }
 
-HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share, Parts layout) {
+HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share, Parts layout,
+                    bool wholeProcedural) {
   HeldShare held;
   held.regions = regions ? regions : defaultRegions(whole.uniqueTriangles(), layout);
-  const SceneUnits units = sceneUnits(whole, held.regions);
+  const SceneUnits units = sceneUnits(whole, held.regions, wholeProcedural);
   held.units = units.size();
   PartOf partOf;
   {

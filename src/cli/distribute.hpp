@@ -50,16 +50,20 @@ struct HeldShare {
 
 // The layout `method` renders: kOne for an exact method, else kPerRegion.
 Parts partsFor(const std::string& method);
+// Method::samplesProceduralObjects of `method`: its cut keeps procedural objects whole.
+bool wholeProceduralFor(const std::string& method);
 // The parts a share of `layout` has once held.mine is set.
 uint32_t partCount(const HeldShare& held, Parts layout);
 
-// Cuts `whole` into `regions` regions (0: defaultRegions) and keeps those of rank share.rank.
-HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share, Parts layout);
+// Cuts `whole` into `regions` regions (0: defaultRegions) and keeps those of rank share.rank
+// (wholeProcedural: procedural objects stay whole units, sceneUnits).
+HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share, Parts layout,
+                    bool wholeProcedural);
 
 // The triangles (expanded) each of `ranks` ranks would hold of `whole` cut into `regions` regions
 // (0: defaultRegions) for a method of `layout`: what holdShare keeps, without keeping it.
 std::vector<uint64_t> trianglesPerRank(const Scene& whole, uint32_t regions, Parts layout,
-                                       int ranks);
+                                       bool wholeProcedural, int ranks);
 
 // Which of this rank's parts each unit goes to, given the units' world centres and triangles
 // (empty: one each), with held.regions set: cuts the regions (splitIntoRegions), deals them

@@ -52,7 +52,8 @@ void printEstimate(const nlohmann::json& e) {
 nlohmann::json rankEstimates(const InfoArgs& a, const Scene& scene) {
   std::vector<uint64_t> held(size_t(a.ranks), scene.uniqueTriangles());
   if (parseDistribution(a.distribute, "--distribute") == Distribution::kData)
-    held = trianglesPerRank(scene, a.regions, partsFor(a.method), a.ranks);
+    held = trianglesPerRank(scene, a.regions, partsFor(a.method), wholeProceduralFor(a.method),
+                            a.ranks);
   nlohmann::json ranks = nlohmann::json::array();
   for (int r = 0; r < a.ranks; ++r) {
     // An instanced share holds at most the scene's unique triangles.

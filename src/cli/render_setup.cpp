@@ -165,7 +165,7 @@ void loadShareOf(const RenderArgs& a, bool talk, const WorkShare& share, RenderP
                                   [&](const HeldShare& held) { refuse(held.triangles, held); });
   } else {
     const Scene whole = loadScene(a.scene, !talk);
-    plan.held = holdShare(whole, a.regions, share, layout);
+    plan.held = holdShare(whole, a.regions, share, layout, wholeProceduralFor(a.method));
     plan.outline = outlineOf(whole);
     uint64_t unique = 0;
     for (const ScenePart& part : plan.held.parts) unique += part.scene.uniqueTriangles();

@@ -65,7 +65,7 @@ void expectStreamedEqualsCut(const std::string& spec) {
           SceneOutline outline;
           const HeldShare streamed =
               holdStreamedShare(*chunked, regions, {rank, ranks}, layout, outline);
-          const HeldShare cut = holdShare(whole, regions, {rank, ranks}, layout);
+          const HeldShare cut = holdShare(whole, regions, {rank, ranks}, layout, false);
           expectSameOutline(outline, outlineOf(whole));
           EXPECT_EQ(streamed.regions, cut.regions);
           EXPECT_EQ(streamed.units, cut.units);

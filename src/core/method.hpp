@@ -51,6 +51,9 @@ class Method {
   }
   // Whether the method renders from such a file (storedOutline then gives its outline).
   virtual bool rendersFromStore() const { return false; }
+  // Whether the method samples a procedural object from its definition, not its mesh: then
+  // --distribute data keeps such an object whole on one rank instead of cutting its triangles.
+  virtual bool samplesProceduralObjects() const { return false; }
   // A renderer with the validated options; scene: finalized, outlives the renderer.
   virtual std::unique_ptr<Renderer> create(const Scene& scene, const RenderOptions& options) const = 0;
 };

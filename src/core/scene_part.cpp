@@ -263,13 +263,17 @@ uint64_t SceneUnits::triangles(size_t u) const {
   return e.split ? 1 : e.triangles;
 }
 
-SceneUnits sceneUnits(const Scene& scene, uint32_t regions) {
+SceneUnits sceneUnits(const Scene& scene, uint32_t regions, bool wholeProcedural) {
   SceneUnits units;
   const uint32_t main = mainMeshNode(scene, units);
   const Node& mesh = scene.nodes[main];
   std::vector<OpenableUnit> open;
   openNode(scene, main, units.meshPath, units.meshToWorld, 0, open);
-  if (!mesh.procedural && !mesh.mesh.empty()) {
+  // A procedural object's mesh is cut like any other unless the method samples its definition.
+  const auto cuttable = [wholeProcedural](const Node& n) {
+    return !n.mesh.empty() && !(wholeProcedural && n.procedural);
+  };
+  if (cuttable(mesh)) {
     units.meshTriangles = mesh.mesh.size();
     open.erase(open.begin());  // the main mesh: its triangles, one unit each
   }
@@ -282,7 +286,7 @@ SceneUnits sceneUnits(const Scene& scene, uint32_t regions) {
     queue.pop();
     const Node& node = scene.nodes[c.node];
     // A mesh placed once is cut into its triangles: as many units as the scene has triangles.
-    const bool splittable = once[c.node] && !node.procedural && !node.mesh.empty();
+    const bool splittable = once[c.node] && cuttable(node);
     const bool openable =
         c.unit.subtree && (!node.instances.empty() || splittable) && opened < kMaxOpened;
     c.unit.split = !c.unit.subtree && c.unit.triangles > limit && splittable;

@@ -8,8 +8,9 @@
 // region count is opened into its node's own mesh and its node's instances, the largest first. An
 // opened mesh too large for the region count whose node the scene places once (a mesh file of a
 // TOML scene, one of several files) is cut into its triangles, a unit each; else it stays one
-// unit, as a procedural object's mesh always does (its layout maps a parameter point to a
-// triangle). A part keeps the whole scene's instance
+// unit. A procedural object's mesh is cut too, except for a method that samples the object's
+// definition (sqrt5: its layout maps a parameter point to a triangle of the whole object), for
+// which it stays one unit. A part keeps the whole scene's instance
 // chains, transforms and node boxes, and its units in the whole scene's order, so exact methods
 // compute every hit bit for bit as on the whole scene, and IDs rise with the whole scene's.
 #include <cstdint>
@@ -73,7 +74,9 @@ struct SceneUnits {
   // The entry of `opened` holding unit u (>= meshTriangles).
   const SceneUnit& entryOf(size_t u) const;
 };
-SceneUnits sceneUnits(const Scene& scene, uint32_t regions);
+// wholeProcedural: procedural objects' meshes stay one unit each (and the main mesh too, if
+// procedural).
+SceneUnits sceneUnits(const Scene& scene, uint32_t regions, bool wholeProcedural = false);
 
 struct ScenePart {
   Scene scene;         // the units kept; nodes opened for some units are new nodes; finalized

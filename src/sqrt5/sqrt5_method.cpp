@@ -10,6 +10,7 @@ namespace {
 class Sqrt5Method : public Method {
  public:
   std::string name() const override { return "sqrt5"; }
+  bool samplesProceduralObjects() const override { return true; }
   std::string summary() const override {
     return "approximate: procedural objects by sqrt(5) adaptive sampling of their (u, v) domain, "
            "meshes by Halton sample vectors, splatted (Stamminger & Drettakis)";
