@@ -158,9 +158,28 @@ uint64_t Scene::heldBytes() const {
   return total;
 }
 
+namespace {
+
+// Whether m only translates (its linear part the identity, its last row (0, 0, 0, 1)).
+bool translationOnly(const glm::dmat4& m) {
+  return m[0] == glm::dvec4(1, 0, 0, 0) && m[1] == glm::dvec4(0, 1, 0, 0) &&
+         m[2] == glm::dvec4(0, 0, 1, 0) && m[3].w == 1.0;
+}
+
+// a * b, where both only translate: their translations added, as the product would sum them
+// (the zero products it would add change no bit but the sign of a zero).
+void composeTranslations(glm::dmat4& a, const glm::dmat4& b) {
+  a[3] = glm::dvec4(glm::dvec3(b[3]) + glm::dvec3(a[3]), 1.0);
+}
+
+}  // namespace
+
 std::optional<Scene::TriangleRef> Scene::resolve(uint64_t id) const {
   if (id >= expandedTriangles()) return std::nullopt;
   TriangleRef ref{root, 0, glm::dmat4(1.0)};
+  // Instanced grids (a chessboard of 10^12 squares) nest translations many levels deep: summed
+  // while both sides only translate, instead of a 4 x 4 product a level.
+  bool translating = true;
   for (;;) {
     const Node& node = nodes[ref.node];
     if (id < node.mesh.size()) {
@@ -172,7 +191,13 @@ std::optional<Scene::TriangleRef> Scene::resolve(uint64_t id) const {
     if (offsets.empty()) return std::nullopt;  // an outline's count without triangles
     const size_t k = size_t(std::upper_bound(offsets.begin(), offsets.end(), id) - offsets.begin()) - 1;
     id -= offsets[k];
-    ref.transform = ref.transform * node.instances[k].transform;
+    const glm::dmat4& m = node.instances[k].transform;
+    if (translating && translationOnly(m)) {
+      composeTranslations(ref.transform, m);
+    } else {
+      ref.transform = ref.transform * m;
+      translating = false;
+    }
     ref.node = node.instances[k].node;
   }
 }

@@ -110,6 +110,32 @@ TEST(Scene, ExpandedCountsOffsetsAndBounds) {
   EXPECT_DOUBLE_EQ(s.bounds().hi.z, 2.0);
 }
 
+// resolve() sums nested translations instead of multiplying them: the same bits as the product
+// flattenScene forms, with translations that do not add exactly and a rotation below them.
+TEST(Scene, ResolveComposesTranslationsAsTheProductDoes) {
+  Scene s;
+  const uint32_t root = s.addNode("root"), c = s.addNode("c"), d = s.addNode("d");
+  const uint32_t e = s.addNode("e");
+  s.nodes[e].mesh = quad(0);
+  s.nodes[root].instances.push_back(
+      {c, glm::translate(glm::dmat4(1.0), glm::dvec3(0.1, 0.2, 0.3))});
+  s.nodes[c].instances.push_back(
+      {d, glm::translate(glm::dmat4(1.0), glm::dvec3(1e8 + 0.7, -0.3, 1.0 / 3.0))});
+  s.nodes[d].instances.push_back(
+      {e, glm::rotate(glm::translate(glm::dmat4(1.0), glm::dvec3(0.05, 0, 0)), 0.5,
+                      glm::dvec3(0, 1, 0))});
+  s.nodes[d].instances.push_back({e, glm::translate(glm::dmat4(1.0), glm::dvec3(-0.9, 0.01, 7))});
+  s.root = root;
+  s.finalize();
+  const std::vector<DrawItem> items = flattenScene(s);
+  ASSERT_EQ(items.size(), 2u);
+  for (const DrawItem& item : items) {
+    const auto ref = s.resolve(item.idBase);
+    ASSERT_TRUE(ref);
+    EXPECT_EQ(ref->transform, item.transform);
+  }
+}
+
 TEST(Scene, ResolveAndFlattenAgree) {
   Scene s = nested();
   const std::vector<DrawItem> items = flattenScene(s);

@@ -28,7 +28,9 @@ struct Placement {
   void set(uint32_t n, const glm::dmat4& m) {
     node = n;
     transform = m;
-    normalMatrix = glm::transpose(glm::inverse(glm::dmat3(m)));
+    // (The inverse of an identity linear part is the identity, bit for bit.)
+    const glm::dmat3 linear(m);
+    normalMatrix = linear == glm::dmat3(1.0) ? linear : glm::transpose(glm::inverse(linear));
   }
   // transform * (p, 1), summed in glm's order ((c0 x + c1 y) + (c2 z + c3)): the same bits
   // without the w column's products.
