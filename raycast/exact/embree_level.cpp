@@ -14,8 +14,11 @@ void childBounds(const RTCBoundsFunctionArguments* args) {
   b->upper_x = c.upper[0], b->upper_y = c.upper[1], b->upper_z = c.upper[2];
 }
 
-// The ray in the child's frame: the direction is mapped linearly, so t keeps its meaning.
+// The ray in the child's frame: the direction is mapped linearly, so t keeps its meaning. A
+// translation (grids of instances nest them many levels deep) moves the origin alone: the same
+// bits as the product, whose other terms are zeros.
 DoubleRay toChild(const UserChild& c, const DoubleRay& r) {
+  if (c.translationOnly) return {r.org + glm::dvec3(c.toChild[3]), r.dir};
   return {c.toChild * glm::dvec4(r.org, 1.0), c.toChild * glm::dvec4(r.dir, 0.0)};
 }
 

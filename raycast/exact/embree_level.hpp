@@ -35,6 +35,7 @@ struct UserChild {
   glm::dmat4x3 toChild{1.0};  // parent Level frame -> child Level frame
   float lower[3], upper[3];   // the child's bounds in the parent Level frame, padded outwards
   uint64_t offset = 0;        // Scene::childOffset of this instance
+  bool translationOnly = false;  // toChild's linear part is the identity
 };
 
 struct Level {

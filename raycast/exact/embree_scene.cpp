@@ -123,6 +123,7 @@ struct EmbreeScene::Impl {
       UserChild c;
       c.child = &build(inst.node);
       c.toChild = glm::dmat4x3(glm::inverse(m));
+      c.translationOnly = glm::dmat3(c.toChild) == glm::dmat3(1.0);
       c.offset = scene.childOffset(node, i);
       // Padded so that float rounding of rays and boxes never culls a grazing hit.
       const double pad =
