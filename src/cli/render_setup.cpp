@@ -160,7 +160,10 @@ void loadShareOf(const RenderArgs& a, bool talk, const WorkShare& share, RenderP
                         " of " + std::to_string(held.regions) + " regions)",
                     ": more ranks hold smaller shares");
   };
-  if (const std::optional<ChunkedScene> chunked = openChunkedScene(a.scene, !talk)) {
+  std::optional<ChunkedScene> chunked = openChunkedScene(a.scene, !talk);
+  // A method that samples a procedural object's definition needs it loaded.
+  if (chunked && chunked->procedural && wholeProceduralFor(a.method)) chunked.reset();
+  if (chunked) {
     plan.held = holdStreamedShare(*chunked, a.regions, share, layout, plan.outline,
                                   [&](const HeldShare& held) { refuse(held.triangles, held); });
   } else {

@@ -101,6 +101,14 @@ TEST(StreamedShare, AGeneratedLandscapeGivesTheShareCutFromTheLoadedScene) {
   expectStreamedEqualsCut("builtin:landscape?objects=20");
 }
 
+// A procedural object streamed in grid rows: the share cut from the loaded tessellation (the
+// sphere's degenerate pole halves dropped alike), its outline and camera.
+TEST(StreamedShare, AProceduralObjectGeneratedInRowsGivesTheShareCutFromTheLoadedScene) {
+  expectStreamedEqualsCut("builtin:terrain?tess=24");
+  expectStreamedEqualsCut("builtin:displaced?shape=sphere&tess=20");
+  expectStreamedEqualsCut("builtin:displaced?tess=130");  // chunks of 126 and 4 rows
+}
+
 TEST(StreamedShare, OtherScenesAreNotStreamed) {
   EXPECT_FALSE(openChunkedScene("builtin:city?blocks=1", true).has_value());
   const test::ScratchDir dir;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include "src/core/error.hpp"
@@ -105,20 +106,18 @@ uint32_t ProceduralSurface::triangleAt(double u, double v) const {
   return slotTriangle[2 * (size_t(j) * size_t(n) + size_t(i)) + (upper ? 0 : 1)];
 }
 
-ProceduralSurface tessellate(const ProceduralSpec& spec, Mesh& mesh, const std::string& where) {
-  require(spec.tess >= 1 && spec.tess <= kMaxTess, where + ": tess",
-          "must be in [1, " + std::to_string(kMaxTess) + "], got " + std::to_string(spec.tess));
-  const size_t n = size_t(spec.tess), slots = 2 * n * n;
-  // positions, normal, colour and slot entry per triangle, and the vertex grid
-  requireMemory(slots * (3 * sizeof(glm::vec3) + sizeof(glm::vec3) + sizeof(Rgba8) + 4) +
-                    (n + 1) * (n + 1) * sizeof(glm::dvec3),
-                where + ": tess", "a tessellation of " + std::to_string(slots) + " triangles");
-  std::vector<glm::dvec3> grid((n + 1) * (n + 1));
-  for (size_t j = 0; j <= n; ++j)
+namespace {
+
+// Rows [j0, j1) of spec's tessellation added to mesh in the layout's order (each row's grid
+// points computed anew: the same values whichever rows a call covers); slotTriangle, when given,
+// receives each cell half's mesh triangle.
+void addRows(const ProceduralSpec& spec, size_t j0, size_t j1, Mesh& mesh,
+             std::vector<uint32_t>* slotTriangle) {
+  const size_t n = size_t(spec.tess);
+  std::vector<glm::dvec3> grid((j1 - j0 + 1) * (n + 1));
+  for (size_t j = j0; j <= j1; ++j)
     for (size_t i = 0; i <= n; ++i)
-      grid[j * (n + 1) + i] = spec.position(double(i) / double(n), double(j) / double(n));
-  mesh = Mesh{};
-  ProceduralSurface out{spec, std::vector<uint32_t>(slots, ProceduralSurface::kNoTriangle)};
+      grid[(j - j0) * (n + 1) + i] = spec.position(double(i) / double(n), double(j) / double(n));
   const double lo = spec.kind == ProceduralKind::kTerrain ? 0.0 : -spec.amplitude;
   const double span = std::max(spec.kind == ProceduralKind::kTerrain ? spec.amplitude
                                                                       : 2.0 * spec.amplitude,
@@ -127,16 +126,36 @@ ProceduralSurface tessellate(const ProceduralSpec& spec, Mesh& mesh, const std::
     if (spec.kind != ProceduralKind::kTerrain) return spec.color;
     return heightColor((0.5 * (a.y + b.y) - lo) / span);
   };
-  for (size_t j = 0; j < n; ++j)
+  for (size_t j = j0; j < j1; ++j)
     for (size_t i = 0; i < n; ++i) {
-      const glm::dvec3 &v00 = grid[j * (n + 1) + i], &v10 = grid[j * (n + 1) + i + 1],
-                       &v01 = grid[(j + 1) * (n + 1) + i], &v11 = grid[(j + 1) * (n + 1) + i + 1];
+      const size_t r = (j - j0) * (n + 1);
+      const glm::dvec3 &v00 = grid[r + i], &v10 = grid[r + i + 1], &v01 = grid[r + n + 1 + i],
+                       &v11 = grid[r + n + 1 + i + 1];
       const size_t slot = 2 * (j * n + i);
-      if (mesh.add(glm::vec3(v00), glm::vec3(v11), glm::vec3(v10), color(v00, v11)))
-        out.slotTriangle[slot] = uint32_t(mesh.size() - 1);
-      if (mesh.add(glm::vec3(v00), glm::vec3(v01), glm::vec3(v11), color(v00, v11)))
-        out.slotTriangle[slot + 1] = uint32_t(mesh.size() - 1);
+      if (mesh.add(glm::vec3(v00), glm::vec3(v11), glm::vec3(v10), color(v00, v11)) && slotTriangle)
+        (*slotTriangle)[slot] = uint32_t(mesh.size() - 1);
+      if (mesh.add(glm::vec3(v00), glm::vec3(v01), glm::vec3(v11), color(v00, v11)) && slotTriangle)
+        (*slotTriangle)[slot + 1] = uint32_t(mesh.size() - 1);
     }
+}
+
+void requireTess(const ProceduralSpec& spec, const std::string& where) {
+  require(spec.tess >= 1 && spec.tess <= kMaxTess, where + ": tess",
+          "must be in [1, " + std::to_string(kMaxTess) + "], got " + std::to_string(spec.tess));
+}
+
+}  // namespace
+
+ProceduralSurface tessellate(const ProceduralSpec& spec, Mesh& mesh, const std::string& where) {
+  requireTess(spec, where);
+  const size_t n = size_t(spec.tess), slots = 2 * n * n;
+  // positions, normal, colour and slot entry per triangle, and the vertex grid
+  requireMemory(slots * (3 * sizeof(glm::vec3) + sizeof(glm::vec3) + sizeof(Rgba8) + 4) +
+                    (n + 1) * (n + 1) * sizeof(glm::dvec3),
+                where + ": tess", "a tessellation of " + std::to_string(slots) + " triangles");
+  mesh = Mesh{};
+  ProceduralSurface out{spec, std::vector<uint32_t>(slots, ProceduralSurface::kNoTriangle)};
+  addRows(spec, 0, n, mesh, &out.slotTriangle);
   // A dropped half takes its cell's other half (both dropped: the cell is a point; none remain).
   for (size_t s = 0; s < slots; s += 2) {
     if (out.slotTriangle[s] == ProceduralSurface::kNoTriangle) out.slotTriangle[s] = out.slotTriangle[s + 1];
@@ -144,6 +163,21 @@ ProceduralSurface tessellate(const ProceduralSpec& spec, Mesh& mesh, const std::
   }
   require(!mesh.empty(), where, "the procedural surface has no non-degenerate triangle");
   return out;
+}
+
+uint64_t tessellateInChunks(const ProceduralSpec& spec, const std::string& where,
+                            const std::function<void(const Mesh&)>& chunk, size_t rowsPerChunk) {
+  requireTess(spec, where);
+  const size_t n = size_t(spec.tess);
+  uint64_t kept = 0;
+  for (size_t j = 0; j < n; j += rowsPerChunk) {
+    Mesh mesh;
+    addRows(spec, j, std::min(n, j + rowsPerChunk), mesh, nullptr);
+    kept += mesh.size();
+    if (!mesh.empty()) chunk(mesh);
+  }
+  require(kept > 0, where, "the procedural surface has no non-degenerate triangle");
+  return kept;
 }
 
 }  // namespace lzb

@@ -15,10 +15,10 @@
 // sphere's pole row) is dropped from the mesh; slotTriangle maps each slot to its mesh triangle,
 // or to the other half of its cell when it was dropped.
 #include <cstdint>
+#include <functional>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "src/core/color.hpp"
 
@@ -65,5 +65,9 @@ struct ProceduralSurface {
 // mesh would not fit in memory.
 constexpr int kMaxTess = 4096;
 ProceduralSurface tessellate(const ProceduralSpec& spec, Mesh& mesh, const std::string& where);
+// The same triangles in the same order, handed out as meshes of rowsPerChunk grid rows each,
+// never held whole (--distribute data, build-tree --mem-mb); returns how many were kept.
+uint64_t tessellateInChunks(const ProceduralSpec& spec, const std::string& where,
+                            const std::function<void(const Mesh&)>& chunk, size_t rowsPerChunk);
 
 }  // namespace lzb

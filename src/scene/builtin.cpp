@@ -40,8 +40,8 @@ Generated addBuiltin(Scene& scene, const std::string& spec, const std::filesyste
 
 std::optional<BuiltinChunks> builtinChunks(const std::string& spec) {
   BuiltinParams params(spec);
-  if (params.name() != "landscape") return std::nullopt;
-  return landscapeChunks(params);
+  if (params.name() == "landscape") return landscapeChunks(params);
+  return proceduralChunks(params);
 }
 
 }  // namespace lzb

@@ -42,8 +42,10 @@ struct BuiltinChunks {
   // Returns the triangles kept and dropped, as the loaded scene's stats count them.
   std::function<LoadStats(const std::function<void(const Mesh&)>&)> generate;
   std::optional<CameraSpec> camera;  // the loaded scene's
+  bool procedural = false;           // a procedural object's tessellation (terrain, displaced)
 };
-// Only landscape streams: nullopt for every other generator. Throws InputError for a bad spec.
+// landscape, terrain and displaced stream: nullopt for every other generator. Throws InputError
+// for a bad spec.
 std::optional<BuiltinChunks> builtinChunks(const std::string& spec);
 
 }  // namespace lzb

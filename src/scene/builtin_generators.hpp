@@ -20,6 +20,9 @@ Generated generateLandscape(Scene& scene, BuiltinParams& params);
 BuiltinChunks landscapeChunks(BuiltinParams& params);
 Generated generateDisplaced(Scene& scene, BuiltinParams& params);
 Generated generateTerrain(Scene& scene, BuiltinParams& params);
+// terrain and displaced as chunks of grid rows (the tessellation never held whole); nullopt for
+// any other generator.
+std::optional<BuiltinChunks> proceduralChunks(BuiltinParams& params);
 Generated generateHaltonForest(Scene& scene, BuiltinParams& params);
 Generated generateReplicated(Scene& scene, BuiltinParams& params,
                              const std::filesystem::path& baseDir);

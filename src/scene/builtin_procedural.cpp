@@ -33,11 +33,21 @@ void readNoise(BuiltinParams& params, ProceduralSpec& spec, double amplitude, do
 
 }  // namespace
 
-Generated generateDisplaced(Scene& scene, BuiltinParams& params) {
+namespace {
+
+// A procedural built-in's definition and camera, from its parameters.
+struct ProceduralBuiltin {
+  std::string name;
+  ProceduralSpec spec;
+  CameraSpec camera;
+};
+
+ProceduralBuiltin displacedBuiltin(BuiltinParams& params) {
   const std::string shape = params.text("shape", "plane");
   require(shape == "plane" || shape == "sphere", params.where("shape"),
           "must be plane or sphere, got '" + shape + "'");
-  ProceduralSpec spec;
+  ProceduralBuiltin b{"displaced/" + shape, {}, {}};
+  ProceduralSpec& spec = b.spec;
   const bool sphere = shape == "sphere";
   spec.kind = sphere ? ProceduralKind::kSphere : ProceduralKind::kPlane;
   spec.size = params.number("size", sphere ? 2.0 : 10.0, 1e-6, 1e9);
@@ -45,38 +55,71 @@ Generated generateDisplaced(Scene& scene, BuiltinParams& params) {
                                    sphere ? 0.5 * spec.size : 1e9);
   readNoise(params, spec, amp, sphere ? 1.5 / spec.size : 4.0 / spec.size, 512);
   params.finish();
-  Generated out;
-  out.root = addProcedural(scene, "displaced/" + shape, spec, "builtin:" + params.spec());
-  CameraSpec camera;
   const double s = spec.size;
-  camera.position = sphere ? glm::dvec3(0.0, 0.5 * s, 3.2 * s) : glm::dvec3(0.0, 0.55 * s, 0.75 * s);
-  camera.lookAt = sphere ? glm::dvec3(0.0) : glm::dvec3(0.0, 0.0, -0.1 * s);
-  camera.nearPlane = 0.02 * s;
-  out.camera = camera;
-  return out;
+  b.camera.position =
+      sphere ? glm::dvec3(0.0, 0.5 * s, 3.2 * s) : glm::dvec3(0.0, 0.55 * s, 0.75 * s);
+  b.camera.lookAt = sphere ? glm::dvec3(0.0) : glm::dvec3(0.0, 0.0, -0.1 * s);
+  b.camera.nearPlane = 0.02 * s;
+  return b;
 }
 
-Generated generateTerrain(Scene& scene, BuiltinParams& params) {
-  ProceduralSpec spec;
+ProceduralBuiltin terrainBuiltin(BuiltinParams& params) {
+  ProceduralBuiltin b{"terrain", {}, {}};
+  ProceduralSpec& spec = b.spec;
   spec.kind = ProceduralKind::kTerrain;
   spec.size = params.number("extent", 2000.0, 1e-3, 1e9);
   const double height = params.number("height", 0.06 * spec.size, 0.0, 1e9);
   spec.octaves = 6;
   readNoise(params, spec, height, 5.0 / spec.size, 768);
   params.finish();
-  Generated out;
-  out.root = addProcedural(scene, "terrain", spec, "builtin:" + params.spec());
   // Low over the near edge, looking along the ground to the horizon: the far hills hide behind
   // the near ones (what the horizon culling of section 3.4 exploits).
   const double e = spec.size;
   const glm::dvec3 foot = spec.position(0.5, 0.95);
-  CameraSpec camera;
-  camera.position = foot + glm::dvec3(0.0, 0.01 * e, 0.0);
-  camera.lookAt = glm::dvec3(0.0, foot.y, -0.5 * e);
-  camera.fovyDegrees = 50.0;
-  camera.nearPlane = 1e-3 * e;
-  out.camera = camera;
+  b.camera.position = foot + glm::dvec3(0.0, 0.01 * e, 0.0);
+  b.camera.lookAt = glm::dvec3(0.0, foot.y, -0.5 * e);
+  b.camera.fovyDegrees = 50.0;
+  b.camera.nearPlane = 1e-3 * e;
+  return b;
+}
+
+Generated generated(Scene& scene, const ProceduralBuiltin& b, const std::string& where) {
+  Generated out;
+  out.root = addProcedural(scene, b.name, b.spec, where);
+  out.camera = b.camera;
   return out;
+}
+
+// Grid rows a streamed chunk holds: about 2^15 triangles.
+size_t rowsPerChunk(const ProceduralSpec& spec) {
+  return std::max<size_t>(1, (size_t(1) << 14) / size_t(spec.tess));
+}
+
+}  // namespace
+
+Generated generateDisplaced(Scene& scene, BuiltinParams& params) {
+  return generated(scene, displacedBuiltin(params), "builtin:" + params.spec());
+}
+
+Generated generateTerrain(Scene& scene, BuiltinParams& params) {
+  return generated(scene, terrainBuiltin(params), "builtin:" + params.spec());
+}
+
+std::optional<BuiltinChunks> proceduralChunks(BuiltinParams& params) {
+  if (params.name() != "terrain" && params.name() != "displaced") return std::nullopt;
+  const ProceduralBuiltin b =
+      params.name() == "terrain" ? terrainBuiltin(params) : displacedBuiltin(params);
+  BuiltinChunks chunks;
+  chunks.triangles = 2 * uint64_t(b.spec.tess) * uint64_t(b.spec.tess);
+  chunks.camera = b.camera;
+  chunks.procedural = true;
+  chunks.generate = [spec = b.spec, where = "builtin:" + params.spec()](
+                        const std::function<void(const Mesh&)>& chunk) {
+    LoadStats stats;
+    stats.loaded = tessellateInChunks(spec, where, chunk, rowsPerChunk(spec));
+    return stats;
+  };
+  return chunks;
 }
 
 Generated generateHaltonForest(Scene& scene, BuiltinParams& params) {

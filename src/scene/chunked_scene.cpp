@@ -18,6 +18,7 @@ std::optional<ChunkedScene> openGeneratedScene(const std::string& spec) {
   c.base.camera = chunks->camera;
   c.triangles = chunks->triangles;
   c.generated = true;
+  c.procedural = chunks->procedural;
   c.chunks = std::move(chunks->generate);
   return c;
 }

@@ -1,10 +1,10 @@
 #pragma once
 // A scene read as chunks of one node's triangles, never whole: a PLY, OFF or OBJ file streamed
-// (mesh_stream.hpp) or builtin:landscape generated (builtin.hpp). Every pass hands out the
-// triangles loadScene makes of the scene, in its ID order, in the node's stored frame; the loaded
-// scene holds them in its root or, for a file stored recentred, in the node its root's one
-// instance places (placedMeshOutline gives the outline either way). For builders that cannot
-// hold the scene: the sample tree's external build, a rank's share under --distribute data.
+// (mesh_stream.hpp) or builtin:landscape, terrain or displaced generated (builtin.hpp). Every pass
+// hands out the triangles loadScene makes of the scene, in its ID order, in the node's stored
+// frame; the loaded scene holds them in its root or, for a file stored recentred, in the node its
+// root's one instance places (placedMeshOutline gives the outline either way). For builders that
+// cannot hold the scene: the sample tree's external build, a rank's share under --distribute data.
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -24,6 +24,7 @@ struct ChunkedScene {
   uint64_t triangles = 0;     // expected (a generator's before degenerate ones are dropped)
   glm::dmat4 placement{1.0};  // the node's stored frame -> world
   bool generated = false;     // made anew on every pass (a copy on disk may read faster)
+  bool procedural = false;    // a procedural object's tessellation, its definition not kept
   uint64_t heldBytes = 0;     // held while open (a file's vertices), besides the passes' chunks
   Chunks chunks;              // one pass: hands out the chunks, returns what was kept and dropped
 };
