@@ -31,10 +31,6 @@ void readNoise(BuiltinParams& params, ProceduralSpec& spec, double amplitude, do
   spec.amplitude = amplitude;
 }
 
-}  // namespace
-
-namespace {
-
 // A procedural built-in's definition and camera, from its parameters.
 struct ProceduralBuiltin {
   std::string name;
