@@ -417,9 +417,7 @@ size_t tileBytes(const TileRect& r, size_t (*rowBytes)(int)) {
 template <class K>
 std::span<const char> packTiles(const Framebuffer& fb, const ScreenTiles& tiles,
                                 const std::vector<uint8_t>& touched) {
-  std::vector<int> list;
-  for (int t = 0; t < tiles.count(); ++t)
-    if (touched[size_t(t)]) list.push_back(t);
+  const std::vector<int> list = markedTiles(touched);
   std::vector<size_t> at(list.size() + 1, 0);
   for (size_t k = 0; k < list.size(); ++k)
     at[k + 1] = at[k] + tileBytes(tiles.tile(list[k]), &TileRows<K>::rowBytes);

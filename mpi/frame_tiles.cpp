@@ -9,15 +9,14 @@ namespace {
 
 const uint32_t kEmptyBits = std::bit_cast<uint32_t>(kEmptyDepth);
 
-// The marked tiles' indices in order.
-std::vector<int> markedList(const std::vector<uint8_t>& marked) {
+}  // namespace
+
+std::vector<int> markedTiles(const std::vector<uint8_t>& marked) {
   std::vector<int> list;
   for (size_t t = 0; t < marked.size(); ++t)
     if (marked[t]) list.push_back(int(t));
   return list;
 }
-
-}  // namespace
 
 // Row by row over the whole frame, each tile's span OR-ed without an early exit (it vectorizes; a
 // per-pixel test with an exit took milliseconds on a mostly empty 1080p frame), the spans stepped
@@ -52,7 +51,7 @@ std::vector<uint8_t> takeTouchedTiles(const Framebuffer& fb, const ScreenTiles& 
 
 std::vector<uint32_t> tilePixels(const Framebuffer& fb, const ScreenTiles& tiles,
                                  const std::vector<uint8_t>& marked) {
-  const std::vector<int> list = markedList(marked);
+  const std::vector<int> list = markedTiles(marked);
   std::vector<size_t> at(list.size() + 1, 0);
   for (size_t k = 0; k < list.size(); ++k) at[k + 1] = at[k] + size_t(tiles.tile(list[k]).pixels());
   std::vector<uint32_t> pixels(at.back());
@@ -67,7 +66,7 @@ std::vector<uint32_t> tilePixels(const Framebuffer& fb, const ScreenTiles& tiles
 }
 
 void clearTiles(Framebuffer& fb, const ScreenTiles& tiles, const std::vector<uint8_t>& marked) {
-  const std::vector<int> list = markedList(marked);
+  const std::vector<int> list = markedTiles(marked);
 #pragma omp parallel for schedule(static)
   for (size_t k = 0; k < list.size(); ++k) {
     const TileRect r = tiles.tile(list[k]);

@@ -21,6 +21,9 @@ std::vector<uint8_t> touchedTiles(const Framebuffer& fb, const ScreenTiles& tile
 std::vector<uint8_t> takeTouchedTiles(const Framebuffer& fb, const ScreenTiles& tiles,
                                       FrameStats& stats);
 
+// The marked tiles' indices, in order.
+std::vector<int> markedTiles(const std::vector<uint8_t>& marked);
+
 // The pixel indices of the marked tiles, tile by tile in tile order, row by row within a tile.
 std::vector<uint32_t> tilePixels(const Framebuffer& fb, const ScreenTiles& tiles,
                                  const std::vector<uint8_t>& marked);

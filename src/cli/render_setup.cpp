@@ -160,15 +160,16 @@ void loadShareOf(const RenderArgs& a, bool talk, const WorkShare& share, RenderP
                         " of " + std::to_string(held.regions) + " regions)",
                     ": more ranks hold smaller shares");
   };
+  const bool wholeProcedural = wholeProceduralFor(a.method);
   std::optional<ChunkedScene> chunked = openChunkedScene(a.scene, !talk);
   // A method that samples a procedural object's definition needs it loaded.
-  if (chunked && chunked->procedural && wholeProceduralFor(a.method)) chunked.reset();
+  if (chunked && chunked->procedural && wholeProcedural) chunked.reset();
   if (chunked) {
     plan.held = holdStreamedShare(*chunked, a.regions, share, layout, plan.outline,
                                   [&](const HeldShare& held) { refuse(held.triangles, held); });
   } else {
     const Scene whole = loadScene(a.scene, !talk);
-    plan.held = holdShare(whole, a.regions, share, layout, wholeProceduralFor(a.method));
+    plan.held = holdShare(whole, a.regions, share, layout, wholeProcedural);
     plan.outline = outlineOf(whole);
     uint64_t unique = 0;
     for (const ScenePart& part : plan.held.parts) unique += part.scene.uniqueTriangles();
