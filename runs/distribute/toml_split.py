@@ -3,7 +3,8 @@
 (1.95 M triangles) exported as a binary PLY and placed twice side by side by a TOML scene (two
 [[meshes]] entries, each placed once: 3.9 M triangles). raycast, 640x480, 3 frames: replicated on
 1 rank x 2 threads, then in data mode on 4 ranks x 1 thread (oversubscribed) with this build
-and, with --before=PATH, an earlier one (which kept each file whole, one unit). Per rank: the
+and, with --before=PATH, an earlier one (9a58c2f and before loaded the TOML scene whole on every
+rank, then cut it; e1e78d4 and before kept each file whole, one unit). Per rank: the
 triangles held and the peak memory; the load seconds, the median frame, and whether the frames
 equal the replicated run's.
 

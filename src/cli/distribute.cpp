@@ -75,10 +75,9 @@ struct WeightedUnits {
   std::vector<glm::dvec3> centres;
   std::vector<uint64_t> triangles;  // empty: one each (only the main mesh's triangles)
 };
-WeightedUnits weigh(const Scene& whole, const SceneUnits& units) {
+WeightedUnits weigh(const Scene& whole, const SceneUnits& units, const DeferredReader& read = {}) {
   WeightedUnits w;
-  w.centres.resize(units.size());
-  for (size_t u = 0; u < units.size(); ++u) w.centres[u] = units.centre(whole, u);
+  units.centres(whole, w.centres, read);
   if (!units.opened.empty())
     for (size_t u = 0; u < units.size(); ++u) w.triangles.push_back(units.triangles(u));
   return w;
@@ -101,17 +100,17 @@ std::vector<uint64_t> trianglesPerRank(const Scene& whole, uint32_t regions, Par
 }
 
 HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share, Parts layout,
-                    bool wholeProcedural) {
+                    bool wholeProcedural, const DeferredReader& read) {
   HeldShare held;
   held.regions = regions ? regions : defaultRegions(whole.uniqueTriangles(), layout);
   const SceneUnits units = sceneUnits(whole, held.regions, wholeProcedural);
   held.units = units.size();
   PartOf partOf;
   {
-    const WeightedUnits w = weigh(whole, units);
+    const WeightedUnits w = weigh(whole, units, read);
     partOf = partOfRank(w.centres, w.triangles, held, share, layout);
   }
-  held.parts = cutScene(whole, units, partOf, partCount(held, layout));
+  held.parts = cutScene(whole, units, partOf, partCount(held, layout), read);
   return held;
 }
 

@@ -56,9 +56,10 @@ bool wholeProceduralFor(const std::string& method);
 uint32_t partCount(const HeldShare& held, Parts layout);
 
 // Cuts `whole` into `regions` regions (0: defaultRegions) and keeps those of rank share.rank
-// (wholeProcedural: procedural objects stay whole units, sceneUnits).
+// (wholeProcedural: procedural objects stay whole units, sceneUnits). A deferred node's
+// triangles (a TOML scene's outline, loadTomlOutline) are read through `read` (cutScene).
 HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share, Parts layout,
-                    bool wholeProcedural);
+                    bool wholeProcedural, const DeferredReader& read = {});
 
 // The triangles (expanded) each of `ranks` ranks would hold of `whole` cut into `regions` regions
 // (0: defaultRegions) for a method of `layout`: what holdShare keeps, without keeping it.

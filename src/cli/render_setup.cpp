@@ -168,9 +168,10 @@ void loadShareOf(const RenderArgs& a, bool talk, const WorkShare& share, RenderP
     plan.held = holdStreamedShare(*chunked, a.regions, share, layout, plan.outline,
                                   [&](const HeldShare& held) { refuse(held.triangles, held); });
   } else {
-    const Scene whole = loadScene(a.scene, !talk);
-    plan.held = holdShare(whole, a.regions, share, layout, wholeProcedural);
-    plan.outline = outlineOf(whole);
+    // A TOML scene's streamed mesh files are read per region, never whole.
+    const TomlOutline whole = loadSceneDeferred(a.scene, !talk);
+    plan.held = holdShare(whole.scene, a.regions, share, layout, wholeProcedural, whole.read);
+    plan.outline = outlineOf(whole.scene);
     uint64_t unique = 0;
     for (const ScenePart& part : plan.held.parts) unique += part.scene.uniqueTriangles();
     refuse(unique, plan.held);

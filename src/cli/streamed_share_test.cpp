@@ -1,7 +1,7 @@
 // A rank's share streamed from a PLY (binary or ASCII), OFF or OBJ file (near the origin and
-// recentred far from it) or generated (builtin:landscape) is the share cut from the loaded scene:
-// the same regions, units, IDs, world triangles, colours, normals and node boxes, and the same
-// outline.
+// recentred far from it), generated (builtin:landscape), or a TOML scene's streamed mesh files
+// read per region, is the share cut from the loaded scene: the same regions, units, IDs, world
+// triangles, colours, normals and node boxes, and the same outline.
 #include "src/cli/streamed_share.hpp"
 
 #include <gtest/gtest.h>
@@ -107,6 +107,92 @@ TEST(StreamedShare, AProceduralObjectGeneratedInRowsGivesTheShareCutFromTheLoade
   expectStreamedEqualsCut("builtin:terrain?tess=24");
   expectStreamedEqualsCut("builtin:displaced?shape=sphere&tess=20");
   expectStreamedEqualsCut("builtin:displaced?tess=130");  // chunks of 126 and 4 rows
+}
+
+// A TOML scene's mesh files read through its outline (loadSceneDeferred) give the parts cut from
+// the loaded scene, for every layout, region and rank count.
+void expectDeferredEqualsCut(const std::string& toml, size_t deferredFiles) {
+  const Scene whole = loadScene(toml, true);
+  const TomlOutline outline = loadSceneDeferred(toml, true);
+  size_t deferred = 0;
+  for (const Node& n : outline.scene.nodes) deferred += n.deferred.has_value();
+  ASSERT_EQ(deferred, deferredFiles);
+  expectSameOutline(outlineOf(outline.scene), outlineOf(whole));
+  bool someSplit = false;
+  for (const Parts layout : {Parts::kOne, Parts::kPerRegion})
+    for (const uint32_t regions : {1u, 5u})
+      for (const int ranks : {1, 2, 3})
+        for (int rank = 0; rank < ranks; ++rank) {
+          SCOPED_TRACE(std::to_string(regions) + " regions, rank " + std::to_string(rank) + " of " +
+                       std::to_string(ranks) + (layout == Parts::kOne ? ", one part" : ", parts"));
+          const HeldShare read =
+              holdShare(outline.scene, regions, {rank, ranks}, layout, false, outline.read);
+          const HeldShare cut = holdShare(whole, regions, {rank, ranks}, layout, false);
+          EXPECT_EQ(read.regions, cut.regions);
+          EXPECT_EQ(read.units, cut.units);
+          EXPECT_EQ(read.mine, cut.mine);
+          ASSERT_EQ(read.parts.size(), cut.parts.size());
+          for (size_t p = 0; p < cut.parts.size(); ++p) expectSamePart(read.parts[p], cut.parts[p]);
+          someSplit = someSplit || read.units > whole.nodes.size();
+        }
+  EXPECT_TRUE(someSplit) << "a file's mesh was cut into its triangles";
+}
+
+// Files placed once and cut into triangles, one far away and recentred with the scene's colour,
+// one placed twice (a whole unit, read whole by the rank holding it), next to a generator loaded
+// whole; a file of over 2^16 triangles (read in two chunks) as a scene's main mesh (through its
+// recentred node), and cut beside another.
+TEST(StreamedShare, ATomlScenesMeshFilesReadPerRegionGiveTheShareCutFromTheLoadedScene) {
+  const test::ScratchDir dir;
+  test::polygonMesh(test::PlyEncoding::kLittleEndian, 0.0, 12).write(dir.path() / "cut.ply");
+  test::polygonMesh(test::PlyEncoding::kAscii, 1e7, 6).write(dir.path() / "far.ply");
+  dir.write("twice.off", test::offGrid("COFF", 0.0));
+  expectDeferredEqualsCut(dir.write("scene.toml", R"(root = "world"
+[[meshes]]
+name = "cut"
+file = "cut.ply"
+[[meshes]]
+name = "far"
+file = "far.ply"
+color = [0.2, 0.4, 0.6]
+[[meshes]]
+name = "twice"
+file = "twice.off"
+[[generators]]
+name = "flake"
+spec = "sphereflake?depth=1"
+[[nodes]]
+name = "world"
+instances = [{ node = "cut" }, { node = "far", translate = [-1e7, 0, 5] },
+             { node = "twice", translate = [0, 0, 30] }, { node = "twice", translate = [0, 9, 30] },
+             { node = "flake", translate = [40, 0, 0] }]
+)")
+                              .string(),
+                          3);
+  test::polygonMesh(test::PlyEncoding::kBigEndian, 1e7, 220).write(dir.path() / "large.ply");
+  expectDeferredEqualsCut(dir.write("one.toml", R"(root = "world"
+[[meshes]]
+name = "far"
+file = "large.ply"
+[[nodes]]
+name = "world"
+instances = [{ node = "far", translate = [0, 0, 1] }]
+)")
+                              .string(),
+                          1);
+  expectDeferredEqualsCut(dir.write("two.toml", R"(root = "world"
+[[meshes]]
+name = "far"
+file = "large.ply"
+[[meshes]]
+name = "cut"
+file = "cut.ply"
+[[nodes]]
+name = "world"
+instances = [{ node = "cut" }, { node = "far", translate = [-1e7, 0, 1] }]
+)")
+                              .string(),
+                          2);
 }
 
 TEST(StreamedShare, OtherScenesAreNotStreamed) {

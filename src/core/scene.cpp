@@ -119,9 +119,9 @@ void Scene::finishNode(uint32_t i, std::vector<int>& height) {
       throw InputError(source + ": too large: node '" + node.name +
                        "' expands to more than 2^62 triangles");
   };
-  uint64_t count = node.mesh.size();
+  uint64_t count = node.ownTriangles();
   checkCount(count);
-  Bounds b;
+  Bounds b = node.deferred ? node.deferred->bounds : Bounds{};
   for (const glm::vec3& p : node.mesh.positions) b.extend(glm::dvec3(p));
   int h = 0;
   for (const Instance& inst : node.instances) {
@@ -142,7 +142,7 @@ void Scene::finishNode(uint32_t i, std::vector<int>& height) {
 
 uint64_t Scene::uniqueTriangles() const {
   uint64_t total = 0;
-  for (const Node& node : nodes) total += node.mesh.size();
+  for (const Node& node : nodes) total += node.ownTriangles();
   return total;
 }
 

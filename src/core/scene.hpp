@@ -86,6 +86,14 @@ struct Instance {
   glm::dmat4 transform{1.0};  // child frame -> parent frame
 };
 
+// A node's triangles not read yet (a TOML scene's streamed file under --distribute data,
+// loadTomlOutline in src/scene/toml_scene.hpp): their count and stored-frame bounds stand for
+// `mesh` until they are read.
+struct DeferredMesh {
+  uint64_t triangles = 0;
+  Bounds bounds;
+};
+
 struct Node {
   std::string name;
   Mesh mesh;
@@ -93,6 +101,9 @@ struct Node {
   // A procedural object (src/core/procedural.hpp): `mesh` is then its tessellation, in the
   // layout that maps a parameter point (u, v) to its triangle.
   std::optional<ProceduralSurface> procedural;
+  std::optional<DeferredMesh> deferred;  // set: `mesh` is empty and stands for these
+  // Its own triangles, read or deferred.
+  uint64_t ownTriangles() const { return deferred ? deferred->triangles : mesh.size(); }
 };
 
 // Triangles dropped at load time and why (reported, never silently lost).

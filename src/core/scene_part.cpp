@@ -36,18 +36,21 @@ uint64_t IdMap::local(uint64_t global) const {
 
 namespace {
 
-const Node& nodeAtPath(const Scene& scene, const std::vector<uint32_t>& path) {
+uint32_t indexAtPath(const Scene& scene, const std::vector<uint32_t>& path) {
   uint32_t n = scene.root;
   for (uint32_t i : path) n = scene.nodes[n].instances[i].node;
-  return scene.nodes[n];
+  return n;
+}
+const Node& nodeAtPath(const Scene& scene, const std::vector<uint32_t>& path) {
+  return scene.nodes[indexAtPath(scene, path)];
 }
 
 // Instances opened at most: each adds a few units.
 constexpr size_t kMaxOpened = size_t(1) << 20;
 
-glm::dvec3 meshCentre(const Mesh& mesh, const glm::dmat4& toWorld) {
-  Bounds b;
-  for (const glm::vec3& p : mesh.positions) b.extend(glm::dvec3(p));
+glm::dvec3 meshCentre(const Node& node, const glm::dmat4& toWorld) {
+  Bounds b = node.deferred ? node.deferred->bounds : Bounds{};
+  for (const glm::vec3& p : node.mesh.positions) b.extend(glm::dvec3(p));
   return b.empty() ? glm::dvec3(toWorld[3]) : b.transformed(toWorld).center();
 }
 
@@ -63,9 +66,8 @@ struct OpenableUnit {
 void openNode(const Scene& scene, uint32_t node, const std::vector<uint32_t>& path,
               const glm::dmat4& toWorld, uint64_t idBase, std::vector<OpenableUnit>& out) {
   const Node& n = scene.nodes[node];
-  if (!n.mesh.empty())
-    out.push_back(
-        {{path, false, idBase, n.mesh.size(), meshCentre(n.mesh, toWorld)}, node, toWorld});
+  if (n.ownTriangles() > 0)
+    out.push_back({{path, false, idBase, n.ownTriangles(), meshCentre(n, toWorld)}, node, toWorld});
   for (size_t i = 0; i < n.instances.size(); ++i) {
     const Instance& inst = n.instances[i];
     if (scene.expandedCount[inst.node] == 0) continue;
@@ -88,9 +90,37 @@ struct Larger {
   }
 };
 
+// Calls f(mesh, first) with node n's triangles: its whole mesh (first 0), or its deferred
+// triangles read chunk by chunk, each with the index of its first triangle.
+template <class F>
+void forChunks(const Scene& whole, uint32_t n, const DeferredReader& read, F&& f) {
+  if (!whole.nodes[n].deferred) return f(whole.nodes[n].mesh, uint64_t(0));
+  if (!read)
+    throw std::logic_error("cutScene: the triangles of node '" + whole.nodes[n].name +
+                           "' are not read");
+  uint64_t first = 0;
+  read(n, [&](const Mesh& chunk) {
+    f(chunk, first);
+    first += chunk.size();
+  });
+}
+
+// Node n's triangles as the loaded scene holds them: its mesh, or its deferred triangles read.
+Mesh heldMesh(const Scene& whole, uint32_t n, const DeferredReader& read) {
+  const Node& node = whole.nodes[n];
+  if (!node.deferred) return node.mesh;
+  if (!read)
+    throw std::logic_error("cutScene: the triangles of node '" + node.name + "' are not read");
+  Mesh mesh;
+  read(n, [&](const Mesh& chunk) { mesh.append(chunk); });
+  mesh.uniformColors();
+  return mesh;
+}
+
 // A node of the part standing for the whole scene's node `original` at an opened path.
 struct PartBuilder {
   const Scene& whole;
+  const DeferredReader& read;
   ScenePart& part;
   std::map<std::vector<uint32_t>, uint32_t> opened;           // path -> part node
   std::vector<std::pair<uint32_t, uint32_t>> openedOriginal;  // (part node, whole node)
@@ -113,6 +143,7 @@ struct PartBuilder {
   const Node& wholeNodeAt(const std::vector<uint32_t>& path) const {
     return nodeAtPath(whole, path);
   }
+  uint32_t nodeIndexAt(const std::vector<uint32_t>& path) const { return indexAtPath(whole, path); }
   void copySubtree(uint32_t i) {
     std::vector<uint32_t> stack{i};
     while (!stack.empty()) {
@@ -121,6 +152,10 @@ struct PartBuilder {
       if (copied[n]) continue;
       copied[n] = true;
       part.scene.nodes[n] = whole.nodes[n];
+      if (whole.nodes[n].deferred) {
+        part.scene.nodes[n].mesh = heldMesh(whole, n, read);
+        part.scene.nodes[n].deferred.reset();
+      }
       for (const Instance& inst : whole.nodes[n].instances) stack.push_back(inst.node);
     }
   }
@@ -134,7 +169,7 @@ struct PartBuilder {
     } else {
       Node& to = part.scene.nodes[nodeAt(u.path)];
       const Node& from = wholeNodeAt(u.path);
-      to.mesh = from.mesh;
+      to.mesh = from.deferred ? heldMesh(whole, nodeIndexAt(u.path), read) : from.mesh;
       to.procedural = from.procedural;
     }
     part.ids.add(u.idBase, u.triangles);
@@ -231,7 +266,7 @@ std::vector<bool> placedOnce(const Scene& scene) {
 // The node of a scene's main mesh: down from the root while a node holds one instance alone.
 uint32_t mainMeshNode(const Scene& scene, SceneUnits& units) {
   uint32_t n = scene.root;
-  while (scene.nodes[n].mesh.empty() && !scene.nodes[n].procedural &&
+  while (scene.nodes[n].ownTriangles() == 0 && !scene.nodes[n].procedural &&
          scene.nodes[n].instances.size() == 1) {
     const Instance& inst = scene.nodes[n].instances[0];
     units.meshPath.push_back(0);
@@ -250,11 +285,41 @@ const SceneUnit& SceneUnits::entryOf(size_t u) const {
   return *(after - 1);
 }
 
+namespace {
+
+const Mesh& readMesh(const Scene& scene, const std::vector<uint32_t>& path) {
+  const Node& n = nodeAtPath(scene, path);
+  if (n.deferred)
+    throw std::logic_error("SceneUnits::centre: the triangles of node '" + n.name +
+                           "' are not read");
+  return n.mesh;
+}
+
+}  // namespace
+
 glm::dvec3 SceneUnits::centre(const Scene& scene, size_t u) const {
-  if (u < meshTriangles) return placedCentroid(nodeAtPath(scene, meshPath).mesh, u, meshToWorld);
+  if (u < meshTriangles) return placedCentroid(readMesh(scene, meshPath), u, meshToWorld);
   const SceneUnit& e = entryOf(u);
-  return e.split ? placedCentroid(nodeAtPath(scene, e.path).mesh, u - e.firstUnit, e.toWorld)
-                 : e.centre;
+  return e.split ? placedCentroid(readMesh(scene, e.path), u - e.firstUnit, e.toWorld) : e.centre;
+}
+
+void SceneUnits::centres(const Scene& scene, std::vector<glm::dvec3>& out,
+                         const DeferredReader& read) const {
+  out.resize(size());
+  // The triangles of one node, units first, first + 1, ...: read in one pass when deferred.
+  const auto meshCentres = [&](const std::vector<uint32_t>& path, const glm::dmat4& toWorld,
+                               uint64_t first) {
+    forChunks(scene, indexAtPath(scene, path), read, [&](const Mesh& m, uint64_t at) {
+      for (size_t t = 0; t < m.size(); ++t) out[first + at + t] = placedCentroid(m, t, toWorld);
+    });
+  };
+  if (meshTriangles > 0) meshCentres(meshPath, meshToWorld, 0);
+  for (const SceneUnit& e : opened) {
+    if (e.split)
+      meshCentres(e.path, e.toWorld, e.firstUnit);
+    else
+      out[e.firstUnit] = e.centre;
+  }
 }
 
 uint64_t SceneUnits::triangles(size_t u) const {
@@ -271,10 +336,10 @@ SceneUnits sceneUnits(const Scene& scene, uint32_t regions, bool wholeProcedural
   openNode(scene, main, units.meshPath, units.meshToWorld, 0, open);
   // A procedural object's mesh is cut like any other unless the method samples its definition.
   const auto cuttable = [wholeProcedural](const Node& n) {
-    return !n.mesh.empty() && !(wholeProcedural && n.procedural);
+    return n.ownTriangles() > 0 && !(wholeProcedural && n.procedural);
   };
   if (cuttable(mesh)) {
-    units.meshTriangles = mesh.mesh.size();
+    units.meshTriangles = mesh.ownTriangles();
     open.erase(open.begin());  // the main mesh: its triangles, one unit each
   }
   const uint64_t limit = std::max<uint64_t>(1, scene.expandedTriangles() / (8 * uint64_t(regions)));
@@ -340,7 +405,7 @@ void finishPart(const Scene& whole, const PartBuilder& build, Scene& s) {
 }  // namespace
 
 std::vector<ScenePart> cutScene(const Scene& whole, const SceneUnits& units, const PartOf& partOf,
-                                uint32_t parts) {
+                                uint32_t parts, const DeferredReader& read) {
   if (partOf.size() != units.size())
     throw std::invalid_argument("cutScene: partOf has " + std::to_string(partOf.size()) +
                                 " entries for " + std::to_string(units.size()) + " units");
@@ -350,27 +415,37 @@ std::vector<ScenePart> cutScene(const Scene& whole, const SceneUnits& units, con
   uint32_t meshNode = whole.root;
   for (ScenePart& part : cut) {
     startPart(whole, part.scene);
-    builds.push_back({whole, part, {}, {}, std::vector<bool>(whole.nodes.size(), false)});
+    builds.push_back({whole, read, part, {}, {}, std::vector<bool>(whole.nodes.size(), false)});
     builds.back().copied[whole.root] =
         true;  // the root is cut, never copied (no instance reaches it)
     // First in every part: the main mesh's node has one index in all of them.
     if (units.meshTriangles > 0) meshNode = builds.back().nodeAt(units.meshPath);
   }
-  if (units.meshTriangles > 0) {
+  // Whether a part keeps some of units [first, first + count): a deferred mesh none keeps is not
+  // read.
+  const auto someKept = [&](uint64_t first, uint64_t count) {
+    return std::any_of(partOf.begin() + std::ptrdiff_t(first),
+                       partOf.begin() + std::ptrdiff_t(first + count),
+                       [](uint32_t p) { return p != kNoPart; });
+  };
+  if (units.meshTriangles > 0 && someKept(0, units.meshTriangles)) {
     reserveKept(partOf, units.meshTriangles, meshNode, cut);
-    keepMainMeshTriangles(nodeAtPath(whole, units.meshPath).mesh, 0, partOf, meshNode, cut);
+    forChunks(whole, indexAtPath(whole, units.meshPath), read, [&](const Mesh& m, uint64_t first) {
+      keepMainMeshTriangles(m, first, partOf, meshNode, cut);
+    });
   }
   for (const SceneUnit& e : units.opened) {
     if (e.split) {
+      if (!someKept(e.firstUnit, e.triangles)) continue;
       // The node made in a part only when it keeps some of the triangles (in ID order).
       std::vector<uint32_t> node(parts, kNoPart);
-      keepTriangles(
-          nodeAtPath(whole, e.path).mesh, e.firstUnit, e.idBase, partOf,
-          [&](uint32_t p) {
-            if (node[p] == kNoPart) node[p] = builds[p].nodeAt(e.path);
-            return node[p];
-          },
-          cut);
+      const auto nodeOf = [&](uint32_t p) {
+        if (node[p] == kNoPart) node[p] = builds[p].nodeAt(e.path);
+        return node[p];
+      };
+      forChunks(whole, indexAtPath(whole, e.path), read, [&](const Mesh& m, uint64_t first) {
+        keepTriangles(m, e.firstUnit + first, e.idBase + first, partOf, nodeOf, cut);
+      });
       continue;
     }
     const uint32_t p = partOf[e.firstUnit];

@@ -14,6 +14,7 @@
 // chains, transforms and node boxes, and its units in the whole scene's order, so exact methods
 // compute every hit bit for bit as on the whole scene, and IDs rise with the whole scene's.
 #include <cstdint>
+#include <functional>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -40,6 +41,11 @@ class IdMap {
   std::vector<Run> runs_;
   uint64_t size_ = 0;
 };
+
+// Reads the triangles of a node whose mesh is deferred (Node::deferred): hands them to `out` in
+// ID order, in meshes of some triangles each, as the loaded scene's node holds them.
+using DeferredReader =
+    std::function<void(uint32_t node, const std::function<void(const Mesh&)>& out)>;
 
 // One unit beyond the root's own triangles: the instance chain from the root (instance indices,
 // node by node) to the node it names, and whether it is that instance's whole subtree or the
@@ -70,6 +76,9 @@ struct SceneUnits {
   size_t size() const { return meshTriangles + openedUnits; }
   // Unit u's world centre and expanded triangles.
   glm::dvec3 centre(const Scene& scene, size_t u) const;
+  // Every unit's world centre into `out`, a deferred node's triangles read through `read`.
+  void centres(const Scene& scene, std::vector<glm::dvec3>& out,
+               const DeferredReader& read = {}) const;
   uint64_t triangles(size_t u) const;
   // The entry of `opened` holding unit u (>= meshTriangles).
   const SceneUnit& entryOf(size_t u) const;
@@ -89,9 +98,11 @@ using PartOf = std::vector<uint32_t>;
 constexpr uint32_t kNoPart = ~uint32_t(0);
 
 // The `parts` parts of `whole` made of the units u with partOf[u] == p (units from
-// sceneUnits(whole, ...)), units in the whole scene's order in each.
+// sceneUnits(whole, ...)), units in the whole scene's order in each. A deferred node's triangles
+// are read through `read` where a part keeps some (a cut mesh chunk by chunk, a whole one read
+// whole); a part holds them as read.
 std::vector<ScenePart> cutScene(const Scene& whole, const SceneUnits& units, const PartOf& partOf,
-                                uint32_t parts);
+                                uint32_t parts, const DeferredReader& read = {});
 
 // The main mesh's units, whole (cutScene) or chunk by chunk (a streamed scene): appends each
 // triangle t of `from` with p = partOf[firstId + t] != kNoPart to node `meshNode`'s mesh of

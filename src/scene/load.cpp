@@ -47,6 +47,15 @@ Scene loadScene(const std::string& spec, bool quiet) {
   return scene;
 }
 
+TomlOutline loadSceneDeferred(const std::string& spec, bool quiet) {
+  if (spec.rfind("builtin:", 0) == 0 || !endsWithToml(spec)) return {loadScene(spec, quiet), {}, 0};
+  TomlOutline outline = loadTomlOutline(spec);
+  require(outline.scene.expandedTriangles() > 0, spec, "the scene has no triangles");
+  if (!quiet) warnDropped(spec, outline.scene.stats);
+  releaseSlack(outline.scene);
+  return outline;
+}
+
 void releaseSlack(Scene& scene) {
   for (Node& node : scene.nodes) {
     node.mesh.positions.shrink_to_fit();

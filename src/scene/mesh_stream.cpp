@@ -47,7 +47,10 @@ LoadStats FaceChunks::finish() {
   return stats_;
 }
 
-MeshStream::MeshStream(const std::filesystem::path& path) : path_(path), where_(path.string()) {
+MeshStream::MeshStream(const std::filesystem::path& path)
+    : path_(path), where_(path.string()), boundStored_([this](const Mesh& m) {
+        for (const glm::vec3& p : m.positions) storedBounds_.extend(glm::dvec3(p));
+      }) {
   std::error_code ec;
   require(std::filesystem::exists(path, ec), where_, "file not found");
   require(std::filesystem::is_regular_file(path, ec), where_, "not a regular file");
@@ -94,8 +97,7 @@ void MeshStream::forEachChunk(const std::function<void(const Mesh&)>& out, size_
 }
 
 void MeshStream::countFaces() {
-  const std::function<void(const Mesh&)> none = [](const Mesh&) {};
-  FaceChunks faces(held_, none, size_t(1) << 16);
+  FaceChunks faces(held_, boundStored_, size_t(1) << 16);
   readFaces(faces);
   stats_ = faces.finish();
 }

@@ -73,6 +73,8 @@ class MeshStream {
   const LoadStats& stats() const { return stats_; }
   uint64_t heldBytes() const { return held_.bytes(); }
   const glm::dmat4& placement() const { return held_.placement; }
+  // The box of the triangles' vertices in the stored frame (the loaded node's own box).
+  const Bounds& storedBounds() const { return storedBounds_; }
   // Hands out the triangles in file order (the loaded scene's ID order) in meshes of about
   // `chunk` triangles, in the stored frame. Throws InputError if the file changed under it.
   void forEachChunk(const std::function<void(const Mesh&)>& out, size_t chunk = 1 << 16) const;
@@ -90,6 +92,9 @@ class MeshStream {
   std::string where_;
   HeldVertices held_;
   LoadStats stats_;
+  Bounds storedBounds_;
+  // Open's reading hands its chunks here: they extend storedBounds_.
+  const std::function<void(const Mesh&)> boundStored_;
 };
 
 }  // namespace lzb

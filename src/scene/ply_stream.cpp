@@ -294,8 +294,7 @@ void PlyMeshStream::scan() {
       readVertices(in, el);
     } else if (e == l.face) {
       faceData_ = in.offset();
-      const std::function<void(const Mesh&)> none = [](const Mesh&) {};
-      FaceChunks faces(held_, none, size_t(1) << 16);
+      FaceChunks faces(held_, boundStored_, size_t(1) << 16);
       readFaceElement(in, faces);
       stats_ = faces.finish();
     } else {

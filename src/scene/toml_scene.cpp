@@ -4,11 +4,14 @@
 
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <glm/gtc/matrix_transform.hpp>
 #include <initializer_list>
 #include <iterator>
 #include <map>
+#include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -16,6 +19,7 @@
 #include "src/core/error.hpp"
 #include "src/scene/builtin.hpp"
 #include "src/scene/mesh_file.hpp"
+#include "src/scene/mesh_stream.hpp"
 #include "src/scene/toml_text_check.hpp"
 
 namespace lzb {
@@ -56,10 +60,17 @@ std::string item(const std::string& prefix, size_t i) {
   return prefix + "[" + std::to_string(i) + "]";
 }
 
+// A mesh file whose node is deferred: its stream and the colour the TOML scene gives it.
+struct DeferredFile {
+  std::shared_ptr<const MeshStream> stream;
+  std::optional<Rgba8> color;
+};
+
 class TomlSceneReader {
  public:
-  explicit TomlSceneReader(const std::filesystem::path& path)
-      : path_(path), file_(path.string()), dir_(path.parent_path()) {}
+  // deferred: where streamed files go, their nodes deferred (nullptr: every file loaded).
+  TomlSceneReader(const std::filesystem::path& path, std::map<uint32_t, DeferredFile>* deferred)
+      : path_(path), file_(path.string()), dir_(path.parent_path()), deferred_(deferred) {}
 
   Scene read();
 
@@ -96,6 +107,10 @@ class TomlSceneReader {
   CameraSpec readCamera(const toml::table& t, const std::string& field) const;
   void readLight(const toml::table& t);
   void readMeshes(const toml::array& a);
+  // The file's nodes as addMeshFile makes them, the one holding its triangles deferred; nullopt
+  // when the file is not streamed.
+  std::optional<uint32_t> addDeferredFile(const std::filesystem::path& file,
+                                          const std::optional<Rgba8>& color);
   void readGenerators(const toml::array& a);
   void readNodes(const toml::array& a);
   glm::dmat4 readTransform(const toml::table& t, const std::string& field) const;
@@ -107,6 +122,7 @@ class TomlSceneReader {
   std::filesystem::path dir_;
   Scene scene_;
   std::map<std::string, Entry, std::less<>> names_;
+  std::map<uint32_t, DeferredFile>* deferred_;
 };
 
 void TomlSceneReader::allowOnly(const toml::table& t, std::initializer_list<std::string_view> keys,
@@ -236,12 +252,32 @@ void TomlSceneReader::readMeshes(const toml::array& a) {
     }
     uint32_t node = 0;
     try {
-      node = addMeshFile(scene_, file, color);
+      const std::optional<uint32_t> deferred = addDeferredFile(file, color);
+      node = deferred ? *deferred : addMeshFile(scene_, file, color);
     } catch (const InputError& e) {
       fail(fileNode, sub(field, "file"), e.what());
     }
     addName(t, field, {Kind::kMesh, node, i, std::nullopt});
   }
+}
+
+std::optional<uint32_t> TomlSceneReader::addDeferredFile(const std::filesystem::path& file,
+                                                         const std::optional<Rgba8>& color) {
+  if (!deferred_ || !MeshStream::streams(file)) return std::nullopt;
+  std::string why;
+  std::shared_ptr<const MeshStream> stream = MeshStream::open(file, why);
+  if (!stream) return std::nullopt;
+  const std::string name = file.stem().string();
+  const uint32_t node = scene_.addNode(name);
+  uint32_t holder = node;
+  if (stream->placement() != glm::dmat4(1.0)) {  // stored recentred, as the loader stores it
+    holder = scene_.addNode(name + "/recentred");
+    scene_.nodes[node].instances.push_back({holder, stream->placement()});
+  }
+  scene_.nodes[holder].deferred = DeferredMesh{stream->triangles(), stream->storedBounds()};
+  scene_.stats.merge(stream->stats());
+  deferred_->emplace(holder, DeferredFile{std::move(stream), color});
+  return node;
 }
 
 void TomlSceneReader::readGenerators(const toml::array& a) {
@@ -445,7 +481,26 @@ Scene TomlSceneReader::read() {
 Scene loadTomlScene(const std::filesystem::path& path) {
   std::error_code ec;
   require(std::filesystem::is_regular_file(path, ec), path.string(), "file not found");
-  return TomlSceneReader(path).read();
+  return TomlSceneReader(path, nullptr).read();
+}
+
+TomlOutline loadTomlOutline(const std::filesystem::path& path) {
+  std::error_code ec;
+  require(std::filesystem::is_regular_file(path, ec), path.string(), "file not found");
+  auto files = std::make_shared<std::map<uint32_t, DeferredFile>>();
+  TomlOutline out;
+  out.scene = TomlSceneReader(path, files.get()).read();
+  for (const auto& [node, file] : *files) out.heldBytes += file.stream->heldBytes();
+  out.read = [files](uint32_t node, const std::function<void(const Mesh&)>& to) {
+    const DeferredFile& file = files->at(node);
+    if (!file.color) return file.stream->forEachChunk(to);
+    file.stream->forEachChunk([&](const Mesh& chunk) {
+      Mesh coloured = chunk;
+      coloured.colors.assign(1, *file.color);
+      to(coloured);
+    });
+  };
+  return out;
 }
 
 }  // namespace lzb

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "src/core/scene.hpp"
+#include "src/core/scene_part.hpp"
 
 namespace lzb {
 
@@ -11,5 +12,17 @@ namespace lzb {
 // for a parse error, a missing or unknown field, a wrong type or value, an unknown or duplicate
 // name and an instancing cycle.
 Scene loadTomlScene(const std::filesystem::path& path);
+
+// The scene loadTomlScene makes, with the triangles of its streamed mesh files ([[meshes]] in a
+// format MeshStream reads, src/scene/mesh_stream.hpp) not read: their nodes are deferred (their
+// count, and their bounds from one pass) and `read` hands out their triangles, the loaded
+// scene's in its ID order, as often as asked. Other files and generators are loaded. For a
+// rank's share under --distribute data (src/cli/toml_share.hpp).
+struct TomlOutline {
+  Scene scene;
+  DeferredReader read;
+  uint64_t heldBytes = 0;  // held while open (the streamed files' vertices)
+};
+TomlOutline loadTomlOutline(const std::filesystem::path& path);
 
 }  // namespace lzb
