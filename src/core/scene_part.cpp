@@ -107,12 +107,9 @@ void forChunks(const Scene& whole, uint32_t n, const DeferredReader& read, F&& f
 
 // Node n's triangles as the loaded scene holds them: its mesh, or its deferred triangles read.
 Mesh heldMesh(const Scene& whole, uint32_t n, const DeferredReader& read) {
-  const Node& node = whole.nodes[n];
-  if (!node.deferred) return node.mesh;
-  if (!read)
-    throw std::logic_error("cutScene: the triangles of node '" + node.name + "' are not read");
+  if (!whole.nodes[n].deferred) return whole.nodes[n].mesh;
   Mesh mesh;
-  read(n, [&](const Mesh& chunk) { mesh.append(chunk); });
+  forChunks(whole, n, read, [&](const Mesh& chunk, uint64_t) { mesh.append(chunk); });
   mesh.uniformColors();
   return mesh;
 }
@@ -143,7 +140,6 @@ struct PartBuilder {
   const Node& wholeNodeAt(const std::vector<uint32_t>& path) const {
     return nodeAtPath(whole, path);
   }
-  uint32_t nodeIndexAt(const std::vector<uint32_t>& path) const { return indexAtPath(whole, path); }
   void copySubtree(uint32_t i) {
     std::vector<uint32_t> stack{i};
     while (!stack.empty()) {
@@ -168,9 +164,8 @@ struct PartBuilder {
       copySubtree(inst.node);
     } else {
       Node& to = part.scene.nodes[nodeAt(u.path)];
-      const Node& from = wholeNodeAt(u.path);
-      to.mesh = from.deferred ? heldMesh(whole, nodeIndexAt(u.path), read) : from.mesh;
-      to.procedural = from.procedural;
+      to.mesh = heldMesh(whole, indexAtPath(whole, u.path), read);
+      to.procedural = wholeNodeAt(u.path).procedural;
     }
     part.ids.add(u.idBase, u.triangles);
     ++part.units;

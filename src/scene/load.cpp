@@ -48,7 +48,7 @@ Scene loadScene(const std::string& spec, bool quiet) {
 }
 
 TomlOutline loadSceneDeferred(const std::string& spec, bool quiet) {
-  if (spec.rfind("builtin:", 0) == 0 || !endsWithToml(spec)) return {loadScene(spec, quiet), {}, 0};
+  if (spec.rfind("builtin:", 0) == 0 || !endsWithToml(spec)) return {loadScene(spec, quiet), {}};
   TomlOutline outline = loadTomlOutline(spec);
   require(outline.scene.expandedTriangles() > 0, spec, "the scene has no triangles");
   if (!quiet) warnDropped(spec, outline.scene.stats);

@@ -490,7 +490,6 @@ TomlOutline loadTomlOutline(const std::filesystem::path& path) {
   auto files = std::make_shared<std::map<uint32_t, DeferredFile>>();
   TomlOutline out;
   out.scene = TomlSceneReader(path, files.get()).read();
-  for (const auto& [node, file] : *files) out.heldBytes += file.stream->heldBytes();
   out.read = [files](uint32_t node, const std::function<void(const Mesh&)>& to) {
     const DeferredFile& file = files->at(node);
     if (!file.color) return file.stream->forEachChunk(to);

@@ -21,7 +21,6 @@ Scene loadTomlScene(const std::filesystem::path& path);
 struct TomlOutline {
   Scene scene;
   DeferredReader read;
-  uint64_t heldBytes = 0;  // held while open (the streamed files' vertices)
 };
 TomlOutline loadTomlOutline(const std::filesystem::path& path);
 
