@@ -69,6 +69,37 @@ TEST(HybridRenderer, IsExactOnTheCity) {
   }
 }
 
+// The areas' lists and sums (LeafAreas::prepareSampling) are built by the first frame that
+// samples, once, and what it reports is what they hold; a run whose frames sample nothing never
+// holds them.
+TEST(HybridRenderer, BuildsTheSamplingSumsOnlyWhenAFrameSamples) {
+  const Scene scene = loadScene("builtin:forest?trees=40", true);
+  const Camera cam = test::pathFrame(scene, 1, 4, 160, 120);
+  HybridParams exact = local();
+  exact.fallbackPx = 1e-12;  // no triangle projects below: nothing sampled
+  HybridRenderer none(scene, test::renderOptions("lzb", 2), exact);
+  const double eager = none.setupStats().shared.value("leaf_area_bytes", 0.0);
+  FrameStats plain;
+  test::renderFrame(none, cam, &plain);
+  EXPECT_EQ(plain.shared.value("sampled_leaves", -1.0), 0.0);
+  EXPECT_FALSE(plain.shared.contains("leaf_area_bytes"));
+
+  HybridRenderer some(scene, test::renderOptions("lzb", 2), sampling());
+  FrameStats first, second;
+  test::renderFrame(some, cam, &first);
+  test::renderFrame(some, cam, &second);
+  ASSERT_GT(first.shared.value("sampled_leaves", 0.0), 0.0);
+  EXPECT_GT(first.shared.value("leaf_area_bytes", 0.0), 4.0 * eager) << "the sums, built";
+  EXPECT_FALSE(second.shared.contains("leaf_area_bytes")) << "built once";
+
+  const localz::LzbAccel accel(scene, localz::LzbAccelParams{});
+  const hybrid::LeafAreas areas(accel);
+  EXPECT_FALSE(areas.samplingPrepared());
+  areas.prepareSampling();
+  EXPECT_TRUE(areas.samplingPrepared());
+  EXPECT_EQ(areas.memoryBytes(), uint64_t(first.shared.value("leaf_area_bytes", 0.0)));
+}
+
 // Where nothing is sampled (the city) the hybrid's rays are lzb's, frame after frame: the walk
 // counts are each frame's own (they once accumulated over the frames of a run).
 TEST(HybridRenderer, WithNothingSampledCastsLikeLzbEveryFrame) {

@@ -5,6 +5,7 @@
 #include <numeric>
 
 #include "src/core/affine.hpp"
+#include "src/core/timer.hpp"
 
 namespace lzb::hybrid {
 
@@ -45,61 +46,20 @@ void sortAlongCurve(std::vector<uint32_t>& tris, const std::vector<uint64_t>& co
   });
 }
 
-}  // namespace
-
-LeafAreas::LeafAreas(const localz::LzbAccel& accel) {
-  const Scene& scene = accel.scene();
-  nodes_.resize(scene.nodes.size());
-#pragma omp parallel for schedule(dynamic, 1)
-  for (size_t n = 0; n < scene.nodes.size(); ++n) {
-    const localz::NodeAccel& a = accel.node(uint32_t(n));
-    const Mesh& mesh = scene.nodes[n].mesh;
-    PerNode& out = nodes_[n];
-    std::vector<double> area(mesh.size());
-    for (size_t t = 0; t < mesh.size(); ++t) {
-      const glm::dvec3 v0(mesh.vertex(t, 0)), v1(mesh.vertex(t, 1)), v2(mesh.vertex(t, 2));
-      area[t] = 0.5 * glm::length(glm::cross(v1 - v0, v2 - v0));
-      out.wholeMax = std::max(out.wholeMax, area[t]);
-    }
-    const std::vector<uint64_t> code = mortonCodes(mesh);
-    // Appends tris (sorted along the curve) to order and their running area sums to prefix.
-    const auto list = [&](std::vector<uint32_t> tris, std::vector<uint32_t>& order,
-                          std::vector<double>& prefix) {
-      sortAlongCurve(tris, code);
-      double sum = 0.0;
-      for (uint32_t t : tris) {
-        order.push_back(t);
-        prefix.push_back(sum += area[t]);
-      }
-    };
-    std::vector<uint32_t> all(mesh.size());
-    std::iota(all.begin(), all.end(), 0u);
-    list(std::move(all), out.wholeOrder, out.wholePrefix);
-    out.guide.resize(out.wholePrefix.size());
-    for (size_t b = 0, j = 0; b < out.guide.size(); ++b) {
-      const double bound = double(b) * out.wholePrefix.back() / double(out.guide.size());
-      while (j + 1 < out.wholePrefix.size() && !(out.wholePrefix[j] > bound)) ++j;
-      out.guide[b] = uint32_t(j);
-    }
-    const uint32_t count = a.empty() ? 0 : a.octree().nodeCount();
-    out.begin.assign(size_t(count) + 1, 0);
-    out.maxArea.assign(count, 0.0);
-    out.leastLeafMax = std::numeric_limits<double>::infinity();
-    for (uint32_t leaf = 0; leaf < count; ++leaf) {
-      out.begin[leaf] = uint32_t(out.prefix.size());
-      const std::span<const uint32_t> tris = a.leafTriangles(leaf);
-      for (uint32_t t : tris) out.maxArea[leaf] = std::max(out.maxArea[leaf], area[t]);
-      if (!tris.empty()) out.leastLeafMax = std::min(out.leastLeafMax, out.maxArea[leaf]);
-      list(std::vector<uint32_t>(tris.begin(), tris.end()), out.order, out.prefix);
-    }
-    out.begin[count] = uint32_t(out.prefix.size());
+// Each triangle's area (node frame, double).
+std::vector<double> triangleAreas(const Mesh& mesh) {
+  std::vector<double> area(mesh.size());
+  for (size_t t = 0; t < mesh.size(); ++t) {
+    const glm::dvec3 v0(mesh.vertex(t, 0)), v1(mesh.vertex(t, 1)), v2(mesh.vertex(t, 2));
+    area[t] = 0.5 * glm::length(glm::cross(v1 - v0, v2 - v0));
   }
-  sumSubtrees(accel);
+  return area;
 }
 
-void LeafAreas::sumSubtrees(const localz::LzbAccel& accel) {
-  const Scene& scene = accel.scene();
-  // Children before parents: an iterative depth-first post-order (the graph is acyclic).
+// Calls visit(n) for every node of the scene, each after the nodes it instances (an iterative
+// depth-first post-order: the graph is acyclic).
+template <class Visit>
+void childrenFirst(const Scene& scene, Visit&& visit) {
   std::vector<uint8_t> done(scene.nodes.size(), 0);
   std::vector<std::pair<uint32_t, size_t>> stack;
   for (uint32_t start = 0; start < scene.nodes.size(); ++start) {
@@ -113,24 +73,99 @@ void LeafAreas::sumSubtrees(const localz::LzbAccel& accel) {
         if (!done[child]) stack.push_back({child, 0});
         continue;
       }
-      PerNode& out = nodes_[n];
-      const localz::NodeAccel& a = accel.node(n);
-      out.subtreeMax = out.wholeMax;
-      for (size_t i = 0; i < instances.size(); ++i)
-        if (!a.empty() && a.instanceUsable(uint32_t(i)))
-          out.subtreeMax =
-              std::max(out.subtreeMax, nodes_[instances[i].node].subtreeMax *
-                                           maxAreaScale(glm::dmat3(instances[i].transform)));
-      out.flat = flatten(accel, n);
-      flatTotal_ += out.flat.size();
-      double sum = out.wholePrefix.empty() ? 0.0 : out.wholePrefix.back();
-      out.flatPrefix.assign(1, sum);
-      for (const FlatInstance& f : out.flat)
-        out.flatPrefix.push_back(sum += nodes_[f.node].flatPrefix.back() * maxAreaScale(f.transform.a));
+      visit(n);
       done[n] = 1;
       stack.pop_back();
     }
   }
+}
+
+}  // namespace
+
+LeafAreas::LeafAreas(const localz::LzbAccel& accel) : accel_(accel) {
+  const Scene& scene = accel.scene();
+  nodes_.resize(scene.nodes.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (size_t n = 0; n < scene.nodes.size(); ++n) {
+    const localz::NodeAccel& a = accel.node(uint32_t(n));
+    const std::vector<double> area = triangleAreas(scene.nodes[n].mesh);
+    PerNode& out = nodes_[n];
+    for (double x : area) out.wholeMax = std::max(out.wholeMax, x);
+    const uint32_t count = a.empty() ? 0 : a.octree().nodeCount();
+    out.maxArea.assign(count, 0.0);
+    out.leastLeafMax = std::numeric_limits<double>::infinity();
+    for (uint32_t leaf = 0; leaf < count; ++leaf) {
+      const std::span<const uint32_t> tris = a.leafTriangles(leaf);
+      for (uint32_t t : tris) out.maxArea[leaf] = std::max(out.maxArea[leaf], area[t]);
+      if (!tris.empty()) out.leastLeafMax = std::min(out.leastLeafMax, out.maxArea[leaf]);
+    }
+  }
+  childrenFirst(scene, [&](uint32_t n) {
+    PerNode& out = nodes_[n];
+    const std::vector<Instance>& instances = scene.nodes[n].instances;
+    const localz::NodeAccel& a = accel.node(n);
+    out.subtreeMax = out.wholeMax;
+    for (size_t i = 0; i < instances.size(); ++i)
+      if (!a.empty() && a.instanceUsable(uint32_t(i)))
+        out.subtreeMax =
+            std::max(out.subtreeMax, nodes_[instances[i].node].subtreeMax *
+                                         maxAreaScale(glm::dmat3(instances[i].transform)));
+    out.flat = flatten(accel, n);
+    flatTotal_ += out.flat.size();
+  });
+}
+
+void LeafAreas::listAlongCurve(uint32_t node, Sampling& out) const {
+  const localz::NodeAccel& a = accel_.node(node);
+  const Mesh& mesh = accel_.scene().nodes[node].mesh;
+  const std::vector<double> area = triangleAreas(mesh);
+  const std::vector<uint64_t> code = mortonCodes(mesh);
+  // Appends tris (sorted along the curve) to order and their running area sums to prefix.
+  const auto list = [&](std::vector<uint32_t> tris, std::vector<uint32_t>& order,
+                        std::vector<double>& prefix) {
+    sortAlongCurve(tris, code);
+    double sum = 0.0;
+    for (uint32_t t : tris) {
+      order.push_back(t);
+      prefix.push_back(sum += area[t]);
+    }
+  };
+  std::vector<uint32_t> all(mesh.size());
+  std::iota(all.begin(), all.end(), 0u);
+  list(std::move(all), out.wholeOrder, out.wholePrefix);
+  out.guide.resize(out.wholePrefix.size());
+  for (size_t b = 0, j = 0; b < out.guide.size(); ++b) {
+    const double bound = double(b) * out.wholePrefix.back() / double(out.guide.size());
+    while (j + 1 < out.wholePrefix.size() && !(out.wholePrefix[j] > bound)) ++j;
+    out.guide[b] = uint32_t(j);
+  }
+  const uint32_t count = a.empty() ? 0 : a.octree().nodeCount();
+  out.begin.assign(size_t(count) + 1, 0);
+  for (uint32_t leaf = 0; leaf < count; ++leaf) {
+    out.begin[leaf] = uint32_t(out.prefix.size());
+    const std::span<const uint32_t> tris = a.leafTriangles(leaf);
+    list(std::vector<uint32_t>(tris.begin(), tris.end()), out.order, out.prefix);
+  }
+  out.begin[count] = uint32_t(out.prefix.size());
+}
+
+void LeafAreas::prepareSampling() const {
+  if (prepared_) return;
+  Stopwatch clock;
+  std::vector<Sampling> built(nodes_.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (size_t n = 0; n < nodes_.size(); ++n) listAlongCurve(uint32_t(n), built[n]);
+  childrenFirst(accel_.scene(), [&](uint32_t n) {
+    Sampling& out = built[n];
+    double sum = out.wholePrefix.empty() ? 0.0 : out.wholePrefix.back();
+    out.flatPrefix.assign(1, sum);
+    for (const FlatInstance& f : nodes_[n].flat)
+      out.flatPrefix.push_back(sum +=
+                               built[f.node].flatPrefix.back() * maxAreaScale(f.transform.a));
+  });
+  sampling_ = std::move(built);
+  prepared_ = true;
+  samplingSeconds_ = clock.seconds();
 }
 
 std::vector<LeafAreas::FlatInstance> LeafAreas::flatten(const localz::LzbAccel& accel,
@@ -183,11 +218,11 @@ std::vector<LeafAreas::FlatInstance> LeafAreas::flatten(const localz::LzbAccel& 
 uint64_t LeafAreas::memoryBytes() const {
   uint64_t bytes = 0;
   for (const PerNode& n : nodes_)
+    bytes += n.maxArea.size() * sizeof(double) + n.flat.size() * sizeof(FlatInstance);
+  for (const Sampling& n : sampling_)
     bytes += (n.begin.size() + n.order.size() + n.wholeOrder.size() + n.guide.size()) *
                  sizeof(uint32_t) +
-             (n.prefix.size() + n.maxArea.size() + n.wholePrefix.size() + n.flatPrefix.size()) *
-                 sizeof(double) +
-             n.flat.size() * sizeof(FlatInstance);
+             (n.prefix.size() + n.wholePrefix.size() + n.flatPrefix.size()) * sizeof(double);
   return bytes;
 }
 

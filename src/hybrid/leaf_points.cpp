@@ -310,18 +310,20 @@ SampledUnits sampledLeaves(const localz::LzbAccel& accel, const LeafAreas& areas
     if (p.subtree) {
       double lo, hi;
       localz::depthRange(accel.scene().nodeBounds[p.node], p.depthGrad, p.depthOffset, lo, hi);
+      areas.prepareSampling();
       add(path, kSubtree, areas.subtreeArea(p.node), placement.areaScale, lo);
     } else if (whole) {
       double lo, hi;
       localz::depthRange(accel.node(p.node).contentBox(0), p.depthGrad, p.depthOffset, lo, hi);
-      const std::span<const double> prefix = areas.nodePrefix(p.node);
-      add(path, kWholeNode, prefix.back(), placement.areaScale, lo);
+      areas.prepareSampling();
+      add(path, kWholeNode, areas.nodePrefix(p.node).back(), placement.areaScale, lo);
     }
     if (!leaves) continue;
     for (uint32_t l = p.firstLeaf; l < p.firstLeaf + p.leafCount; ++l) {
       const localz::CullLeaf& leaf = culled.leaves[l];
-      if (rule.sampled(p.node, leaf.leaf, leaf.depthMin, placement.areaScale))
-        add(path, leaf.leaf, areas.total(p.node, leaf.leaf), placement.areaScale, leaf.depthMin);
+      if (!rule.sampled(p.node, leaf.leaf, leaf.depthMin, placement.areaScale)) continue;
+      areas.prepareSampling();
+      add(path, leaf.leaf, areas.total(p.node, leaf.leaf), placement.areaScale, leaf.depthMin);
     }
   }
   return out;

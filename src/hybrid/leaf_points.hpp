@@ -88,8 +88,9 @@ struct SampledUnits {
   uint64_t accepted = 0;            // units the rule takes, with samples or none
 };
 
-// The placed nodes and culled leaves the rule samples, in cull order (which no rank count changes), with their
-// sample counts.
+// The placed nodes and culled leaves the rule samples, in cull order (which no rank count changes),
+// with their sample counts. Prepares the areas' lists and sums (LeafAreas::prepareSampling) at the
+// first unit the rule takes.
 SampledUnits sampledLeaves(const localz::LzbAccel& accel, const LeafAreas& areas,
                            const localz::CulledScene& culled, const SampledLeafRule& rule,
                            const Camera& camera, const PointParams& params,
