@@ -31,13 +31,10 @@ NodeAccel::NodeAccel(const Scene& scene, uint32_t node, const LzbAccelParams& pa
   octree_ = Octree(scene, node, op);
   ropes_ = OctreeRopes(octree_);
 
-  areaNormal_.resize(mesh.size());
   std::vector<float> area(mesh.size());
   for (size_t t = 0; t < mesh.size(); ++t) {
     const glm::dvec3 a(mesh.vertex(t, 0)), b(mesh.vertex(t, 1)), c(mesh.vertex(t, 2));
-    const glm::dvec3 n = 0.5 * glm::cross(b - a, c - a);
-    area[t] = float(glm::length(n));
-    areaNormal_[t] = glm::vec3(n);
+    area[t] = float(glm::length(0.5 * glm::cross(b - a, c - a)));
   }
 
   instanceBoxes_ = Octree::instanceBoxes(scene, node);
@@ -124,7 +121,7 @@ NodeAccel::NodeAccel(const Scene& scene, uint32_t node, const LzbAccelParams& pa
 uint64_t NodeAccel::memoryBytes() const {
   return octree_.stats().memoryBytes + octree_.nodeCount() * (7 * 4 + 4 * 4 + 4 + 48) +
          4 * (tris_.size() + insts_.size() + occluders_.size() + dynamic_.size()) +
-         12 * areaNormal_.size() + (sizeof(Affine) + sizeof(Bounds)) * inverse_.size();
+         (sizeof(Affine) + sizeof(Bounds)) * inverse_.size();
 }
 
 LzbAccel::LzbAccel(const Scene& scene, const LzbAccelParams& params)

@@ -308,7 +308,7 @@ void RayWalker::processLeaf(uint32_t ctx, uint32_t leaf, PvlPart& out) {
     for (uint32_t t : candidates) {
       if (filter) {
         ++counts.visibilityTests;
-        if (!(-glm::dot(v, a.areaNormal(t)) > base)) continue;  // paper, equation (1)
+        if (!(-glm::dot(v, areaNormal(mesh, t)) > base)) continue;  // paper, equation (1)
       }
       ++counts.triangleTests;
       ++tested;

@@ -69,10 +69,12 @@ LzbRenderer::LzbRenderer(const Scene& scene, const RenderOptions& options, const
     : scene_(scene), options_(options), lzb_(lzb), plane_(lzb) {
   validate(lzb_);
   options_.threads = std::max(options_.threads, 1);
-  accel_ = std::make_unique<LzbAccel>(scene, accelParams(lzb_));
+  // Embree first: its build's transient memory (~30 bytes a triangle) then comes before the
+  // octrees are held, not on top of them.
   EmbreeSceneOptions eo;
   eo.threads = options_.threads;
   embree_ = std::make_unique<EmbreeScene>(scene, eo);
+  accel_ = std::make_unique<LzbAccel>(scene, accelParams(lzb_));
   raster_ = std::make_unique<TriangleRasterizer>(scene);
   for (int t = 0; t < options_.threads; ++t) {
     walkers_.emplace_back(*accel_, leafTestFor(lzb_), lzb_.octreeWalk());
