@@ -51,8 +51,9 @@ void expectSamePart(const ScenePart& streamed, const ScenePart& cut) {
   }
 }
 
-void expectStreamedEqualsCut(const std::string& spec) {
-  const Scene whole = loadScene(spec, true);
+// Calls check(regions, share, layout) for 1 and 5 regions, every rank of 1 to 3, both layouts.
+template <class Check>
+void forEveryShare(const std::string& spec, Check&& check) {
   for (const Parts layout : {Parts::kOne, Parts::kPerRegion})
     for (const uint32_t regions : {1u, 5u})
       for (const int ranks : {1, 2, 3})
@@ -60,21 +61,29 @@ void expectStreamedEqualsCut(const std::string& spec) {
           SCOPED_TRACE(spec + ": " + std::to_string(regions) + " regions, rank " +
                        std::to_string(rank) + " of " + std::to_string(ranks) +
                        (layout == Parts::kOne ? ", one part" : ", a part per region"));
-          const std::optional<ChunkedScene> chunked = openChunkedScene(spec, true);
-          ASSERT_TRUE(chunked.has_value());
-          SceneOutline outline;
-          const HeldShare streamed =
-              holdStreamedShare(*chunked, regions, {rank, ranks}, layout, outline);
-          const HeldShare cut = holdShare(whole, regions, {rank, ranks}, layout, false);
-          expectSameOutline(outline, outlineOf(whole));
-          EXPECT_EQ(streamed.regions, cut.regions);
-          EXPECT_EQ(streamed.units, cut.units);
-          EXPECT_EQ(streamed.mine, cut.mine);
-          ASSERT_EQ(streamed.parts.size(), cut.parts.size());
-          EXPECT_EQ(cut.parts.size(), layout == Parts::kOne ? 1u : cut.mine.size());
-          for (size_t p = 0; p < cut.parts.size(); ++p)
-            expectSamePart(streamed.parts[p], cut.parts[p]);
+          check(regions, WorkShare{rank, ranks}, layout);
         }
+}
+
+void expectSameShare(const HeldShare& a, const HeldShare& cut, Parts layout) {
+  EXPECT_EQ(a.regions, cut.regions);
+  EXPECT_EQ(a.units, cut.units);
+  EXPECT_EQ(a.mine, cut.mine);
+  ASSERT_EQ(a.parts.size(), cut.parts.size());
+  EXPECT_EQ(cut.parts.size(), layout == Parts::kOne ? 1u : cut.mine.size());
+  for (size_t p = 0; p < cut.parts.size(); ++p) expectSamePart(a.parts[p], cut.parts[p]);
+}
+
+void expectStreamedEqualsCut(const std::string& spec) {
+  const Scene whole = loadScene(spec, true);
+  forEveryShare(spec, [&](uint32_t regions, const WorkShare& share, Parts layout) {
+    const std::optional<ChunkedScene> chunked = openChunkedScene(spec, true);
+    ASSERT_TRUE(chunked.has_value());
+    SceneOutline outline;
+    const HeldShare streamed = holdStreamedShare(*chunked, regions, share, layout, outline);
+    expectSameOutline(outline, outlineOf(whole));
+    expectSameShare(streamed, holdShare(whole, regions, share, layout, false), layout);
+  });
 }
 
 TEST(StreamedShare, AMeshFileStreamedGivesTheShareCutFromTheLoadedScene) {
@@ -119,22 +128,11 @@ void expectDeferredEqualsCut(const std::string& toml, size_t deferredFiles) {
   ASSERT_EQ(deferred, deferredFiles);
   expectSameOutline(outlineOf(outline.scene), outlineOf(whole));
   bool someSplit = false;
-  for (const Parts layout : {Parts::kOne, Parts::kPerRegion})
-    for (const uint32_t regions : {1u, 5u})
-      for (const int ranks : {1, 2, 3})
-        for (int rank = 0; rank < ranks; ++rank) {
-          SCOPED_TRACE(std::to_string(regions) + " regions, rank " + std::to_string(rank) + " of " +
-                       std::to_string(ranks) + (layout == Parts::kOne ? ", one part" : ", parts"));
-          const HeldShare read =
-              holdShare(outline.scene, regions, {rank, ranks}, layout, false, outline.read);
-          const HeldShare cut = holdShare(whole, regions, {rank, ranks}, layout, false);
-          EXPECT_EQ(read.regions, cut.regions);
-          EXPECT_EQ(read.units, cut.units);
-          EXPECT_EQ(read.mine, cut.mine);
-          ASSERT_EQ(read.parts.size(), cut.parts.size());
-          for (size_t p = 0; p < cut.parts.size(); ++p) expectSamePart(read.parts[p], cut.parts[p]);
-          someSplit = someSplit || read.units > whole.nodes.size();
-        }
+  forEveryShare(toml, [&](uint32_t regions, const WorkShare& share, Parts layout) {
+    const HeldShare read = holdShare(outline.scene, regions, share, layout, false, outline.read);
+    expectSameShare(read, holdShare(whole, regions, share, layout, false), layout);
+    someSplit = someSplit || read.units > whole.nodes.size();
+  });
   EXPECT_TRUE(someSplit) << "a file's mesh was cut into its triangles";
 }
 
