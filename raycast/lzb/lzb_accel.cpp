@@ -32,10 +32,8 @@ NodeAccel::NodeAccel(const Scene& scene, uint32_t node, const LzbAccelParams& pa
   ropes_ = OctreeRopes(octree_);
 
   std::vector<float> area(mesh.size());
-  for (size_t t = 0; t < mesh.size(); ++t) {
-    const glm::dvec3 a(mesh.vertex(t, 0)), b(mesh.vertex(t, 1)), c(mesh.vertex(t, 2));
-    area[t] = float(glm::length(0.5 * glm::cross(b - a, c - a)));
-  }
+  for (size_t t = 0; t < mesh.size(); ++t)
+    area[t] = float(glm::length(areaVector(mesh, uint32_t(t))));
 
   instanceBoxes_ = Octree::instanceBoxes(scene, node);
   for (Bounds& b : instanceBoxes_)

@@ -15,11 +15,15 @@
 
 namespace lzb::localz {
 
-// normal x area of triangle t, node frame: visibility = -dot(v, areaNormal) (paper, equation 1).
-// Derived from the vertices where the walk tests it (12 bytes a triangle less than storing it).
-inline glm::vec3 areaNormal(const Mesh& mesh, uint32_t t) {
+// normal x area of triangle t, node frame, in double: its length is the triangle's area.
+inline glm::dvec3 areaVector(const Mesh& mesh, uint32_t t) {
   const glm::dvec3 a(mesh.vertex(t, 0)), b(mesh.vertex(t, 1)), c(mesh.vertex(t, 2));
-  return glm::vec3(0.5 * glm::cross(b - a, c - a));
+  return 0.5 * glm::cross(b - a, c - a);
+}
+// The same in float: visibility = -dot(v, areaNormal) (paper, equation 1). Derived from the
+// vertices where the walk tests it (12 bytes a triangle less than storing it).
+inline glm::vec3 areaNormal(const Mesh& mesh, uint32_t t) {
+  return glm::vec3(areaVector(mesh, t));
 }
 
 struct LzbAccelParams {

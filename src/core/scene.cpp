@@ -121,8 +121,7 @@ void Scene::finishNode(uint32_t i, std::vector<int>& height) {
   };
   uint64_t count = node.ownTriangles();
   checkCount(count);
-  Bounds b = node.deferred ? node.deferred->bounds : Bounds{};
-  for (const glm::vec3& p : node.mesh.positions) b.extend(glm::dvec3(p));
+  Bounds b = node.ownBounds();
   int h = 0;
   for (const Instance& inst : node.instances) {
     instanceOffsets[i].push_back(count);
@@ -138,6 +137,12 @@ void Scene::finishNode(uint32_t i, std::vector<int>& height) {
   expandedCount[i] = count;
   nodeBounds[i] = b;
   height[i] = h;
+}
+
+Bounds Node::ownBounds() const {
+  Bounds b = deferred ? deferred->bounds : Bounds{};
+  for (const glm::vec3& p : mesh.positions) b.extend(glm::dvec3(p));
+  return b;
 }
 
 uint64_t Scene::uniqueTriangles() const {

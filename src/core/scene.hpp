@@ -104,6 +104,8 @@ struct Node {
   std::optional<DeferredMesh> deferred;  // set: `mesh` is empty and stands for these
   // Its own triangles, read or deferred.
   uint64_t ownTriangles() const { return deferred ? deferred->triangles : mesh.size(); }
+  // The box of its own triangles' vertices (node frame), read or deferred.
+  Bounds ownBounds() const;
 };
 
 // Triangles dropped at load time and why (reported, never silently lost).

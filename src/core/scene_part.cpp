@@ -49,8 +49,7 @@ const Node& nodeAtPath(const Scene& scene, const std::vector<uint32_t>& path) {
 constexpr size_t kMaxOpened = size_t(1) << 20;
 
 glm::dvec3 meshCentre(const Node& node, const glm::dmat4& toWorld) {
-  Bounds b = node.deferred ? node.deferred->bounds : Bounds{};
-  for (const glm::vec3& p : node.mesh.positions) b.extend(glm::dvec3(p));
+  const Bounds b = node.ownBounds();
   return b.empty() ? glm::dvec3(toWorld[3]) : b.transformed(toWorld).center();
 }
 
