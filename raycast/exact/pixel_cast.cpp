@@ -12,21 +12,84 @@ namespace lzb {
 
 namespace {
 
-// Traces the pixel centres of one tile into fb; true when some ray hit.
-bool traceTile(const EmbreeScene& embree, const Camera& camera, const TileRect& r, bool packets,
-               Framebuffer& fb) {
+// How far each pixel's ray looks: the far plane, or the depth another share drew there
+// (share.drawnDepth; a hit at that depth may still win on its ID, and Embree keeps hits at
+// t == tfar). There, a share holding one region among several casts no ray that misses its box
+// before that depth (most of them: the regions are disjoint boxes, each under most pixels).
+struct PixelReach {
+  const std::vector<float>* drawn = nullptr;
+  Bounds box;            // what the scene holds, padded for rounding (with drawn only)
+  double nearest = 0.0;  // the least view depth in the box
+  double far = 0.0;
+  double tfar(size_t i) const {
+    return drawn && (*drawn)[i] != kEmptyDepth ? std::min(far, double((*drawn)[i])) : far;
+  }
+  // Whether something is drawn at pixel i in front of the whole box.
+  bool hidden(size_t i) const { return drawn && double((*drawn)[i]) < nearest; }
+  // Whether the ray from eye along dir can meet what the scene holds before tfar.
+  bool reaches(const glm::dvec3& eye, const glm::dvec3& dir, double near, double until) const {
+    if (!drawn) return true;
+    double t0 = near, t1 = until;
+    for (int k = 0; k < 3; ++k) {
+      const double inv = 1.0 / dir[k];  // +-inf along an axis the ray does not move on
+      double a = (box.lo[k] - eye[k]) * inv, b = (box.hi[k] - eye[k]) * inv;
+      if (a > b) std::swap(a, b);
+      if (!(a <= t1 && b >= t0)) return std::isnan(a) || std::isnan(b);  // NaN: keep the ray
+      t0 = std::max(t0, a), t1 = std::min(t1, b);
+    }
+    return true;
+  }
+};
+
+// Whether a ray through some pixel of r can meet reach.box before the depth drawn there: the
+// box is not wholly outside one side of the tile's pyramid (the planes through the eye and
+// its edges), nor behind every pixel's drawn depth. Conservative: the pixels decide the rest.
+bool tileReaches(const PixelReach& reach, const Camera& camera, const TileRect& r,
+                 const Framebuffer& fb) {
+  if (!reach.drawn) return true;
   const glm::dvec3 eye = camera.position();
-  bool any = false;
+  const glm::dvec3 d[4] = {camera.pixelDirection(r.x0, r.y0), camera.pixelDirection(r.x1, r.y0),
+                           camera.pixelDirection(r.x1, r.y1), camera.pixelDirection(r.x0, r.y1)};
+  const glm::dvec3 centre = d[0] + d[1] + d[2] + d[3];
+  for (int k = 0; k < 4; ++k) {
+    glm::dvec3 n = glm::cross(d[k], d[(k + 1) % 4]);
+    if (glm::dot(n, centre) < 0.0) n = -n;  // towards the inside
+    double most = -std::numeric_limits<double>::infinity();
+    for (int c = 0; c < 8; ++c) most = std::max(most, glm::dot(n, reach.box.corner(c) - eye));
+    if (most < 0.0) return false;
+  }
+  for (int y = r.y0; y < r.y1; ++y)
+    for (int x = r.x0; x < r.x1; ++x)
+      if (!reach.hidden(fb.index(x, y))) return true;
+  return false;
+}
+
+struct TileCast {
+  uint64_t rays = 0;
+  bool hit = false;
+};
+
+// Traces the pixel centres of one tile into fb.
+TileCast traceTile(const EmbreeScene& embree, const Camera& camera, const TileRect& r, bool packets,
+                   const PixelReach& reach, Framebuffer& fb) {
+  const glm::dvec3 eye = camera.position();
+  TileCast cast;
+  if (!tileReaches(reach, camera, r, fb)) return cast;
   if (!packets) {
     for (int y = r.y0; y < r.y1; ++y)
       for (int x = r.x0; x < r.x1; ++x) {
-        const RayHit h = embree.intersect(eye, camera.pixelDirection(x + 0.5, y + 0.5),
-                                          camera.nearPlane(), camera.farPlane());
-        fb.depth[fb.index(x, y)] = h.hit() ? h.t : kEmptyDepth;
-        fb.id[fb.index(x, y)] = h.id;
-        any |= h.hit();
+        const size_t i = fb.index(x, y);
+        if (reach.hidden(i)) continue;
+        const glm::dvec3 dir = camera.pixelDirection(x + 0.5, y + 0.5);
+        const double tfar = reach.tfar(i);
+        if (!reach.reaches(eye, dir, camera.nearPlane(), tfar)) continue;
+        const RayHit h = embree.intersect(eye, dir, camera.nearPlane(), tfar);
+        fb.depth[i] = h.hit() ? h.t : kEmptyDepth;
+        fb.id[i] = h.id;
+        cast.hit |= h.hit();
+        ++cast.rays;
       }
-    return any;
+    return cast;
   }
   // 4x4 pixel blocks in order, so that each packet of 16 (or 8) rays is coherent.
   constexpr int kMax = ScreenTiles::kDefaultSide * ScreenTiles::kDefaultSide;
@@ -38,17 +101,22 @@ bool traceTile(const EmbreeScene& embree, const Camera& camera, const TileRect& 
     for (int bx = r.x0; bx < r.x1; bx += 4)
       for (int y = by; y < std::min(by + 4, r.y1); ++y)
         for (int x = bx; x < std::min(bx + 4, r.x1); ++x) {
-          rays[n] = {eye, camera.pixelDirection(x + 0.5, y + 0.5), camera.nearPlane(),
-                     camera.farPlane()};
-          pixel[n++] = fb.index(x, y);
+          const size_t i = fb.index(x, y);
+          if (reach.hidden(i)) continue;
+          const glm::dvec3 dir = camera.pixelDirection(x + 0.5, y + 0.5);
+          const double tfar = reach.tfar(i);
+          if (!reach.reaches(eye, dir, camera.nearPlane(), tfar)) continue;
+          pixel[n] = i;
+          rays[n++] = {eye, dir, camera.nearPlane(), tfar};
         }
   embree.intersect(std::span<const Ray>(rays, n), std::span<RayHit>(hits, n));
   for (size_t k = 0; k < n; ++k) {
     fb.depth[pixel[k]] = hits[k].hit() ? hits[k].t : kEmptyDepth;
     fb.id[pixel[k]] = hits[k].id;
-    any |= hits[k].hit();
+    cast.hit |= hits[k].hit();
   }
-  return any;
+  cast.rays = n;
+  return cast;
 }
 
 // The pixels whose centre rays can meet `box`: the rectangle of its corners' projections, a pixel
@@ -83,6 +151,12 @@ std::vector<int> tilesToCast(const EmbreeScene& embree, const Camera& camera,
   return mine;
 }
 
+// The box grown by a margin for the float rounding of hits and of Embree's bounds.
+Bounds padded(const Bounds& box) {
+  const double pad = 1e-5 * (box.diagonal() + std::max(glm::length(box.lo), glm::length(box.hi)));
+  return {box.lo - pad, box.hi + pad};
+}
+
 }  // namespace
 
 uint64_t castablePixels(const EmbreeScene& embree, const Camera& camera) {
@@ -99,13 +173,21 @@ uint64_t castEveryPixel(const EmbreeScene& embree, const Camera& camera, const W
   // (--distribute data) casts only where its regions project.
   const std::vector<int> mine = tilesToCast(embree, camera, share, tiles);
   touched.assign(size_t(tiles.count()), 0);
+  PixelReach reach{share.drawnDepth, {}, 0.0, camera.farPlane()};
+  if (reach.drawn) {
+    reach.box = padded(embree.heldBounds());
+    reach.nearest = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < 8; ++c)
+      reach.nearest = std::min(reach.nearest, camera.viewDepth(reach.box.corner(c)));
+  }
   const long count = long(mine.size());
   long rays = 0;
 #pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(threads, 1)) reduction(+ : rays)
   for (long k = 0; k < count; ++k) {
-    const TileRect r = tiles.tile(mine[size_t(k)]);
-    touched[size_t(mine[size_t(k)])] = uint8_t(traceTile(embree, camera, r, packets, fb));
-    rays += r.pixels();
+    const TileCast cast =
+        traceTile(embree, camera, tiles.tile(mine[size_t(k)]), packets, reach, fb);
+    touched[size_t(mine[size_t(k)])] = uint8_t(cast.hit);
+    rays += long(cast.rays);
   }
   return uint64_t(rays);
 }

@@ -20,7 +20,8 @@ uint64_t castablePixels(const EmbreeScene& embree, const Camera& camera);
 
 // Casts the pixels of share's tiles into fb (depth and ID; other pixels untouched) on `threads`
 // threads, as 4 x 4 Embree packets when `packets`; returns the rays cast. `touched` gets 1 for
-// each tile (ScreenTiles' grid) where a ray hit, 0 elsewhere (FrameStats::touchedTiles).
+// each tile (ScreenTiles' grid) where a ray hit, 0 elsewhere (FrameStats::touchedTiles). With
+// share.drawnDepth, a pixel's ray stops at the depth drawn there: a miss beyond it.
 uint64_t castEveryPixel(const EmbreeScene& embree, const Camera& camera, const WorkShare& share,
                         Framebuffer& fb, std::vector<uint8_t>& touched, int threads,
                         bool packets = true);

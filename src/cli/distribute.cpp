@@ -120,7 +120,9 @@ class PartRenderer : public Renderer {
  public:
   PartRenderer(const HeldShare& held, std::vector<std::unique_ptr<Renderer>> inner,
                std::string method)
-      : held_(held), inner_(std::move(inner)), method_(std::move(method)) {}
+      : held_(held), inner_(std::move(inner)), method_(std::move(method)) {
+    for (const ScenePart& part : held_.parts) boxes_.push_back(heldBox(part.scene));
+  }
 
   std::string name() const override {
     for (const auto& r : inner_)
@@ -147,16 +149,18 @@ class PartRenderer : public Renderer {
     owner_.resize(fb.size());
     local_.resize(fb.size());
     std::vector<uint8_t> all(size_t(tiles.count()), 0);  // the tiles some part covered
-    for (size_t p = 0; p < inner_.size(); ++p) {
-      if (!inner_[p]) continue;  // an empty part
+    // Nearest part first, each told what the ones before drew: its rays stop there.
+    WorkShare alone{0, 1};
+    alone.drawnDepth = &fb.depth;
+    for (uint32_t p : nearestFirst(camera.position())) {
       Framebuffer& into = scratch(fb, inner_[p]->colourFromIds());
       FrameStats own;
-      inner_[p]->render(camera, frame, WorkShare{0, 1}, into, own);
+      inner_[p]->render(camera, frame, alone, into, own);
       addStagesAndCounts(own, stats);
       Stopwatch clock;
       const std::vector<uint8_t> touched = takeTouchedTiles(into, tiles, own);
       for (uint32_t i : tilePixels(fb, tiles, newTiles(touched, all))) owner_[i] = kNoOwner;
-      keepNearerOfPart(uint32_t(p), into, fb, tilePixels(into, tiles, touched));
+      keepNearerOfPart(p, into, fb, tilePixels(into, tiles, touched));
       stats.addStage("composite regions", clock.seconds());
     }
     Stopwatch clock;
@@ -194,6 +198,30 @@ class PartRenderer : public Renderer {
   }
 
  private:
+  // The world box of what a part holds (its root's own triangles and placed subtrees; the
+  // root's node box is the whole scene's).
+  static Bounds heldBox(const Scene& scene) {
+    const Node& root = scene.rootNode();
+    Bounds box = root.ownBounds();
+    for (const Instance& inst : root.instances)
+      if (scene.expandedCount[inst.node])
+        box.extend(scene.nodeBounds[inst.node].transformed(inst.transform));
+    return box;
+  }
+  // The parts, nearest box to the eye first (ties in part order).
+  std::vector<uint32_t> nearestFirst(const glm::dvec3& eye) const {
+    std::vector<std::pair<double, uint32_t>> order;
+    for (uint32_t p = 0; p < inner_.size(); ++p)
+      if (inner_[p])
+        order.push_back({boxes_[p].empty()
+                             ? std::numeric_limits<double>::infinity()
+                             : glm::length(glm::clamp(eye, boxes_[p].lo, boxes_[p].hi) - eye),
+                         p});
+    std::sort(order.begin(), order.end());
+    std::vector<uint32_t> parts;
+    for (const auto& [distance, p] : order) parts.push_back(p);
+    return parts;
+  }
   // A probing method's step 0 over every part of every rank (src/core/frame_probe.hpp). Every
   // rank takes part in the reductions, one holding no part too.
   void probeTogether(const Camera& camera, const WorkShare& share, FrameStats& stats) {
@@ -318,6 +346,7 @@ class PartRenderer : public Renderer {
   const HeldShare& held_;
   std::vector<std::unique_ptr<Renderer>> inner_;
   std::string method_;
+  std::vector<Bounds> boxes_;  // per part, heldBox
   Framebuffer scratch_;
   bool scratchClear_ = false;     // every pixel of scratch_ empty, its colour the background
   std::vector<uint32_t> owner_;   // the part that won each pixel

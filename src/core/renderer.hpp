@@ -29,6 +29,11 @@ struct WorkShare {
   // Set alike: the minimum of `values` and the sum of `words` over the ranks, in place.
   std::function<void(std::span<double>)> minDoubles = {};
   std::function<void(std::span<uint64_t>)> sumWords = {};
+  // Set by a driver that draws several shares into one frame one after another (a rank's
+  // regions, nearest first): per pixel, the depth already drawn there (kEmptyDepth: none). A hit
+  // beyond it loses the composite, so a method may skip looking for it; one at that depth may
+  // still win on its ID and must be kept. Null: no bound.
+  const std::vector<float>* drawnDepth = nullptr;
 };
 
 struct RenderOptions {
