@@ -142,8 +142,15 @@ std::vector<uint32_t> splitIntoRegions(std::span<const glm::dvec3> centres,
 
 std::vector<uint32_t> regionsOfRank(std::span<const uint64_t> regionTriangles,
                                     const WorkShare& share) {
-  const std::vector<double> costs(regionTriangles.begin(), regionTriangles.end());
-  return dealByCost(costs, share);
+  // Greedy list scheduling in the k-d order: equal regions go round-robin.
+  std::vector<uint64_t> held(size_t(std::max(share.size, 1)), 0);
+  std::vector<uint32_t> mine;
+  for (uint32_t r = 0; r < regionTriangles.size(); ++r) {
+    const size_t least = size_t(std::min_element(held.begin(), held.end()) - held.begin());
+    held[least] += regionTriangles[r];
+    if (int(least) == share.rank) mine.push_back(r);
+  }
+  return mine;
 }
 
 }  // namespace lzb

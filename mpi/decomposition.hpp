@@ -10,8 +10,8 @@
 //  - Items by cost (octree boxes of the point pass): contiguous runs of about equal estimated
 //    cost, in the items' own order.
 //  - Regions (--distribute data): the scene cut into spatial boxes balanced by triangle count, a
-//    k-d split that depends on the scene and the region count alone; ranks hold contiguous runs
-//    of regions of about equal triangle count.
+//    k-d split that depends on the scene and the region count alone; dealt in k-d order to the
+//    rank holding the fewest triangles so far (round-robin when equal).
 #include <algorithm>
 #include <cstdint>
 #include <span>
@@ -93,8 +93,11 @@ std::vector<uint32_t> dealByCost(std::span<const double> costs, const WorkShare&
 std::vector<uint32_t> splitIntoRegions(std::span<const glm::dvec3> centres,
                                        std::span<const uint64_t> triangles, uint32_t regions);
 
-// The regions rank share.rank holds, given each region's triangles: a contiguous run of about
-// equal triangle count (dealByCost), so a rank's regions are neighbours in the k-d order.
+// The regions rank share.rank holds, given each region's triangles: in the k-d order, each
+// region to the rank holding the fewest triangles so far (the first such rank). Equal regions go
+// round-robin, so neighbours in space land on different ranks and a view's cost spreads over
+// them, as interleaved screen tiles do (a rank holding a cluster of neighbours did most of the
+// frame whenever the camera stood among them); uneven ones still balance.
 std::vector<uint32_t> regionsOfRank(std::span<const uint64_t> regionTriangles,
                                     const WorkShare& share);
 

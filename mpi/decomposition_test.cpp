@@ -144,26 +144,41 @@ TEST(Regions, TwoRegionsAreTwoHalfSpacesAlongTheWidestAxis) {
   EXPECT_LE(leftMax, rightMin) << "region 0 lies below region 1 along x";
 }
 
-TEST(Regions, DependOnTheUnitsAloneAndDealContiguousRunsToRanks) {
+TEST(Regions, DependOnTheUnitsAloneAndSpreadOverTheRanksBalanced) {
   const GridUnits g = gridUnits(8);
   const std::vector<uint32_t> a = splitIntoRegions(g.centres, g.triangles, 7);
   EXPECT_EQ(a, splitIntoRegions(g.centres, g.triangles, 7)) << "deterministic";
   std::vector<uint64_t> regionTriangles(7, 0);
   for (size_t u = 0; u < a.size(); ++u) regionTriangles[a[u]] += g.triangles[u];
+  const uint64_t largest = *std::max_element(regionTriangles.begin(), regionTriangles.end());
   for (int size : {1, 2, 3, 7, 9}) {
     std::vector<int> owner(7, -1);
+    std::vector<uint64_t> held(size_t(size), 0);
     for (int rank = 0; rank < size; ++rank)
       for (uint32_t r : regionsOfRank(regionTriangles, {rank, size})) {
         EXPECT_EQ(owner[r], -1) << "region " << r << " held twice";
         owner[r] = rank;
+        held[size_t(rank)] += regionTriangles[r];
       }
     for (size_t r = 0; r < owner.size(); ++r) {
       EXPECT_GE(owner[r], 0) << "region " << r << " held by no rank of " << size;
-      if (r) {
-        EXPECT_GE(owner[r], owner[r - 1]) << "contiguous runs in region order";
-      }
+    }
+    const auto [least, most] = std::minmax_element(held.begin(), held.end());
+    if (size <= 7) {
+      EXPECT_LE(*most - *least, largest) << size << " ranks";
     }
   }
+}
+
+TEST(Regions, EqualRegionsGoRoundRobinUnevenOnesStillBalance) {
+  // Neighbours in the k-d order (in space) on different ranks.
+  const std::vector<uint64_t> equal(5, 5);
+  EXPECT_EQ(regionsOfRank(equal, {0, 3}), (std::vector<uint32_t>{0, 3}));
+  EXPECT_EQ(regionsOfRank(equal, {1, 3}), (std::vector<uint32_t>{1, 4}));
+  EXPECT_EQ(regionsOfRank(equal, {2, 3}), (std::vector<uint32_t>{2}));
+  const std::vector<uint64_t> uneven = {10, 1, 10, 1};
+  EXPECT_EQ(regionsOfRank(uneven, {0, 2}), (std::vector<uint32_t>{0, 3}));
+  EXPECT_EQ(regionsOfRank(uneven, {1, 2}), (std::vector<uint32_t>{1, 2}));
 }
 
 TEST(Regions, UnitTrianglesGiveTheWeightedSplitOnAnyThreadCount) {

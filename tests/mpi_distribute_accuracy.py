@@ -20,7 +20,7 @@ import shutil
 import subprocess
 import sys
 
-SCENE = "builtin:city?blocks=2"
+SCENE = "builtin:city?blocks=3"
 COMMON = ["--frames", "2", "--width", "160", "--height", "120", "--threads", "1", "--quiet"]
 DATA = ["--distribute", "data", "--regions", "7"]
 
