@@ -7,7 +7,7 @@ set -euo pipefail
 lzb="$1" work="$2" mpiexec="$3"
 rm -rf "$work" && mkdir -p "$work"
 out="$work/out"
-scene="builtin:landscape?objects=200000"  # 4.8 M triangles: the hybrid's estimate is 1.4 GiB
+scene="builtin:landscape?objects=200000"  # 4.8 M triangles: the hybrid's estimate is 754 MiB
 run=(render "$scene" --method hybrid --quiet --threads 1 --frames 1 --out "$out")
 # Runs lzb under an address-space limit: limit.sh KIB ARGS...
 cat >"$work/limit.sh" <<'SH'
@@ -26,21 +26,22 @@ expect_refusal() {  # name, what the message must say, then the mpiexec argument
   expect_job_exit2 "$name" "$out" "needs an estimated" "$says" -- "$@"
 }
 
-# 1.1 GiB of address space: the process starts, the whole scene's estimate does not fit.
+# 1.1 GiB of address space: the process starts, the whole scene's estimate does not fit (the
+# limit less what is mapped, ~300 MiB, and less 256 MiB a run maps without touching).
 one=("${limit[@]}" 1200000 "$lzb" "${run[@]}")
 expect_refusal "rank 1 limited" "rank 1: error: $scene: every rank holding 4832768" \
   -n 1 "$lzb" "${run[@]}" : -n 1 "${one[@]}"
 expect_refusal "every rank limited" "every rank holding" -n 2 "${one[@]}"
-# Under data, each of 2 ranks would hold half; with 0.95 GiB that still does not fit.
-share=("${limit[@]}" 1000000 "$lzb" "${run[@]}" --distribute data)
+# Under data, each of 2 ranks would hold half (422 MiB); with 0.9 GiB that still does not fit.
+share=("${limit[@]}" 950000 "$lzb" "${run[@]}" --distribute data)
 expect_refusal "a data share too large" "rank 0 of 2 holding" -n 2 "${share[@]}"
 
-# The capacity case: under 0.95 GiB a rank refuses raycast's whole 4.8 M triangles (670 MiB
-# estimated, above the limit less the process's own mapping), so --distribute auto cuts the scene
-# across 2 ranks, each under the same limit, and the image is that of 1 rank without the limit.
+# The capacity case: under 1.05 GiB a rank refuses raycast's whole 4.8 M triangles (670 MiB
+# estimated, above what the limit leaves), so --distribute auto cuts the scene across 2 ranks
+# (371 MiB each), each under the same limit, and the image is that of 1 rank without the limit.
 exact=(render "$scene" --method raycast --quiet --threads 1 --frames 1 --width 160 --height 120)
 "$lzb" "${exact[@]}" --out "$work/whole" >/dev/null
-timeout 120 "$mpiexec" --oversubscribe -n 2 "${limit[@]}" 1000000 "$lzb" "${exact[@]}" \
+timeout 120 "$mpiexec" --oversubscribe -n 2 "${limit[@]}" 1100000 "$lzb" "${exact[@]}" \
   --distribute auto --out "$work/auto" >/dev/null
 grep -q '"distribution": "data"' "$work/auto/report.json" || { echo "FAIL: auto did not cut"; exit 1; }
 cmp "$work/whole/frame_0000.exr" "$work/auto/frame_0000.exr" ||

@@ -42,6 +42,7 @@ int main(int argc, char** argv) {
   // Frames reuse their buffers without faulting them in again (2-rank hybrid, city 1080p:
   // composite 1.7-1.9 -> 1.2 ms, runs/composite/heap_ab.csv).
   lzb::keepFreedMemory();
+  lzb::oneArenaUnderAddressLimit();
   lzb::mpi::Session session(&argc, &argv, wantsNodeServer(argc, argv));
   const lzb::mpi::Group g = lzb::mpi::Group::world();
   lzb::setProcessesOnMachine(lzb::mpi::ranksOnMachine(g));  // they share its memory

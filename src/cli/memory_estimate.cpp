@@ -17,7 +17,7 @@ struct Model {
 // runs/distribute/memory_model.csv (2 threads, 640x480): slopes and bases, rounded up.
 const std::map<std::string, Model>& models() {
   static const std::map<std::string, Model> m = {{"zbuffer", {80, 170}}, {"raycast", {128, 80}},
-                                                 {"lzb", {184, 80}},     {"hybrid", {208, 100}},
+                                                 {"lzb", {136, 110}},    {"hybrid", {144, 90}},
                                                  {"rzb", {208, 90}},     {"surfels", {56, 100}},
                                                  {"sqrt5", {56, 100}},   {"sampletree", {144, 90}}};
   return m;

@@ -38,6 +38,15 @@ bool keepFreedMemory() {
          mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1;
 }
 
+bool oneArenaUnderAddressLimit() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return false;
+  // glibc reserves 64 MiB of address space for each thread's own arena, untouched but counted
+  // by ulimit -v: one heap for every thread (2 x 1 hybrid ranks: 300 instead of 430 MiB mapped
+  // before the scene, runs/distribute/README.md).
+  return mallopt(M_ARENA_MAX, 1) == 1;
+}
+
 void useThreads(int threads) {
   omp_set_num_threads(threads);
   // llvmpipe reads this when its screen is created; keeps ranks from oversubscribing cores.
@@ -59,12 +68,15 @@ uint64_t mappedBytes() {
   return 0;
 }
 
-// What RLIMIT_AS leaves of the address space (unlimited: all of it).
+// What RLIMIT_AS leaves of the address space for the estimates (unlimited: all of it): the
+// limit less what is mapped now and less what a run maps beyond what it touches (thread stacks,
+// Embree's and llvmpipe's reservations), which the estimates of resident memory leave out.
 uint64_t addressSpaceLeft() {
+  constexpr uint64_t kUntouchedReserve = uint64_t(256) << 20;
   rlimit limit{};
   if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return ~uint64_t(0);
-  const uint64_t mapped = mappedBytes();
-  return uint64_t(limit.rlim_cur) > mapped ? uint64_t(limit.rlim_cur) - mapped : 0;
+  const uint64_t taken = mappedBytes() + kUntouchedReserve;
+  return uint64_t(limit.rlim_cur) > taken ? uint64_t(limit.rlim_cur) - taken : 0;
 }
 
 std::string mib(uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20); }

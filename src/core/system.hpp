@@ -12,6 +12,10 @@ uint64_t peakMemoryBytes();   // peak resident set size so far
 // them, so each frame faults their pages in again. False when the allocator refused (e.g. under
 // AddressSanitizer). Call once at start.
 bool keepFreedMemory();
+// Under an address-space limit (ulimit -v), every thread allocates from one heap: glibc's
+// per-thread arenas each map 64 MiB they may never touch. True when it applied. Call once at
+// start, before threads are made.
+bool oneArenaUnderAddressLimit();
 // Sets the thread count for OpenMP and (through LP_NUM_THREADS) llvmpipe; call before rendering.
 void useThreads(int threads);
 
