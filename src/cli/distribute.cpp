@@ -100,7 +100,8 @@ std::vector<uint64_t> trianglesPerRank(const Scene& whole, uint32_t regions, Par
 }
 
 HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share, Parts layout,
-                    bool wholeProcedural, const DeferredReader& read) {
+                    bool wholeProcedural, const DeferredReader& read,
+                    const std::function<void(const HeldShare&)>& beforeKeeping) {
   HeldShare held;
   held.regions = regions ? regions : defaultRegions(whole.uniqueTriangles(), layout);
   const SceneUnits units = sceneUnits(whole, held.regions, wholeProcedural);
@@ -110,6 +111,7 @@ HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share
     const WeightedUnits w = weigh(whole, units, read);
     partOf = partOfRank(w.centres, w.triangles, held, share, layout);
   }
+  if (beforeKeeping) beforeKeeping(held);
   held.parts = cutScene(whole, units, partOf, partCount(held, layout), read);
   return held;
 }

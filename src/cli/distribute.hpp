@@ -13,6 +13,7 @@
 // give the same image on any number of ranks. The one decision the regions share is the
 // hybrid's frame way (src/core/frame_probe.hpp), reduced over every region of every rank.
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -58,8 +59,11 @@ uint32_t partCount(const HeldShare& held, Parts layout);
 // Cuts `whole` into `regions` regions (0: defaultRegions) and keeps those of rank share.rank
 // (wholeProcedural: procedural objects stay whole units, sceneUnits). A deferred node's
 // triangles (a TOML scene's outline, loadTomlOutline) are read through `read` (cutScene).
+// beforeKeeping(held) runs once the regions are dealt, before any triangle of the share is read
+// or kept (it may throw to refuse the share).
 HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share, Parts layout,
-                    bool wholeProcedural, const DeferredReader& read = {});
+                    bool wholeProcedural, const DeferredReader& read = {},
+                    const std::function<void(const HeldShare&)>& beforeKeeping = {});
 
 // The triangles (expanded) each of `ranks` ranks would hold of `whole` cut into `regions` regions
 // (0: defaultRegions) for a method of `layout`: what holdShare keeps, without keeping it.

@@ -168,13 +168,15 @@ void loadShareOf(const RenderArgs& a, bool talk, const WorkShare& share, RenderP
     plan.held = holdStreamedShare(*chunked, a.regions, share, layout, plan.outline,
                                   [&](const HeldShare& held) { refuse(held.triangles, held); });
   } else {
-    // A TOML scene's streamed mesh files are read per region, never whole.
+    // A TOML scene's streamed mesh files are read per region, never whole; the share is
+    // refused before they are, as lzb info estimates it (a placed mesh held whole, so at most
+    // the scene's unique triangles).
     const TomlOutline whole = loadSceneDeferred(a.scene, !talk);
-    plan.held = holdShare(whole.scene, a.regions, share, layout, wholeProcedural, whole.read);
+    plan.held = holdShare(whole.scene, a.regions, share, layout, wholeProcedural, whole.read,
+                          [&](const HeldShare& held) {
+                            refuse(std::min(held.triangles, whole.scene.uniqueTriangles()), held);
+                          });
     plan.outline = outlineOf(whole.scene);
-    uint64_t unique = 0;
-    for (const ScenePart& part : plan.held.parts) unique += part.scene.uniqueTriangles();
-    refuse(unique, plan.held);
   }
   plan.scene = sceneFromOutline(plan.outline);
 }

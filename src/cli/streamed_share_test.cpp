@@ -193,6 +193,42 @@ instances = [{ node = "cut" }, { node = "far", translate = [-1e7, 0, 1] }]
                           2);
 }
 
+// The share's check runs once the regions are dealt, before any of its triangles is read: a file
+// placed twice (a whole unit, cut by its bounds) is read only once the check has passed, and a
+// check that refuses leaves it unread.
+TEST(StreamedShare, ATomlShareIsCheckedBeforeItsTrianglesAreRead) {
+  const test::ScratchDir dir;
+  dir.write("twice.off", test::offGrid("COFF", 0.0));
+  const std::string toml = dir.write("scene.toml", R"(root = "world"
+[[meshes]]
+name = "twice"
+file = "twice.off"
+[[nodes]]
+name = "world"
+instances = [{ node = "twice" }, { node = "twice", translate = [0, 9, 30] }]
+)")
+                               .string();
+  const TomlOutline outline = loadSceneDeferred(toml, true);
+  uint64_t reads = 0;
+  const DeferredReader counted = [&](uint32_t node, const std::function<void(const Mesh&)>& out) {
+    ++reads;
+    outline.read(node, out);
+  };
+  const auto hold = [&](bool refuse) {
+    return holdShare(outline.scene, 1, WorkShare{0, 1}, Parts::kOne, false, counted,
+                     [&](const HeldShare& held) {
+                       EXPECT_EQ(reads, 0u) << "read before the check";
+                       EXPECT_EQ(held.triangles, outline.scene.expandedTriangles());
+                       if (refuse) throw InputError("refused");
+                     });
+  };
+  EXPECT_THROW(hold(true), InputError);
+  EXPECT_EQ(reads, 0u);
+  const HeldShare held = hold(false);
+  EXPECT_GT(reads, 0u);
+  EXPECT_EQ(held.parts.at(0).scene.uniqueTriangles(), outline.scene.uniqueTriangles());
+}
+
 TEST(StreamedShare, OtherScenesAreNotStreamed) {
   EXPECT_FALSE(openChunkedScene("builtin:city?blocks=1", true).has_value());
   const test::ScratchDir dir;
