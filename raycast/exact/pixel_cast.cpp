@@ -64,6 +64,14 @@ bool tileReaches(const PixelReach& reach, const Camera& camera, const TileRect& 
   return false;
 }
 
+// Pixel (x, y)'s centre ray (i: its index), or false when it need not be cast.
+bool pixelRay(const Camera& camera, const PixelReach& reach, int x, int y, size_t i, Ray& ray) {
+  if (reach.hidden(i)) return false;
+  ray = {camera.position(), camera.pixelDirection(x + 0.5, y + 0.5), camera.nearPlane(),
+         reach.tfar(i)};
+  return reach.reaches(ray.origin, ray.dir, ray.tnear, ray.tfar);
+}
+
 struct TileCast {
   uint64_t rays = 0;
   bool hit = false;
@@ -72,18 +80,15 @@ struct TileCast {
 // Traces the pixel centres of one tile into fb.
 TileCast traceTile(const EmbreeScene& embree, const Camera& camera, const TileRect& r, bool packets,
                    const PixelReach& reach, Framebuffer& fb) {
-  const glm::dvec3 eye = camera.position();
   TileCast cast;
   if (!tileReaches(reach, camera, r, fb)) return cast;
   if (!packets) {
     for (int y = r.y0; y < r.y1; ++y)
       for (int x = r.x0; x < r.x1; ++x) {
         const size_t i = fb.index(x, y);
-        if (reach.hidden(i)) continue;
-        const glm::dvec3 dir = camera.pixelDirection(x + 0.5, y + 0.5);
-        const double tfar = reach.tfar(i);
-        if (!reach.reaches(eye, dir, camera.nearPlane(), tfar)) continue;
-        const RayHit h = embree.intersect(eye, dir, camera.nearPlane(), tfar);
+        Ray ray;
+        if (!pixelRay(camera, reach, x, y, i, ray)) continue;
+        const RayHit h = embree.intersect(ray.origin, ray.dir, ray.tnear, ray.tfar);
         fb.depth[i] = h.hit() ? h.t : kEmptyDepth;
         fb.id[i] = h.id;
         cast.hit |= h.hit();
@@ -101,13 +106,8 @@ TileCast traceTile(const EmbreeScene& embree, const Camera& camera, const TileRe
     for (int bx = r.x0; bx < r.x1; bx += 4)
       for (int y = by; y < std::min(by + 4, r.y1); ++y)
         for (int x = bx; x < std::min(bx + 4, r.x1); ++x) {
-          const size_t i = fb.index(x, y);
-          if (reach.hidden(i)) continue;
-          const glm::dvec3 dir = camera.pixelDirection(x + 0.5, y + 0.5);
-          const double tfar = reach.tfar(i);
-          if (!reach.reaches(eye, dir, camera.nearPlane(), tfar)) continue;
-          pixel[n] = i;
-          rays[n++] = {eye, dir, camera.nearPlane(), tfar};
+          pixel[n] = fb.index(x, y);
+          n += pixelRay(camera, reach, x, y, pixel[n], rays[n]);
         }
   embree.intersect(std::span<const Ray>(rays, n), std::span<RayHit>(hits, n));
   for (size_t k = 0; k < n; ++k) {
