@@ -137,9 +137,9 @@ void expectDeferredEqualsCut(const std::string& toml, size_t deferredFiles) {
 }
 
 // Files placed once and cut into triangles, one far away and recentred with the scene's colour,
-// one placed twice (a whole unit, read whole by the rank holding it), next to a generator loaded
-// whole; a file of over 2^16 triangles (read in two chunks) as a scene's main mesh (through its
-// recentred node), and cut beside another.
+// one placed twice (a whole unit, read whole by the rank holding it), a landscape generated per
+// region, next to a generator loaded whole; a file of over 2^16 triangles (read in two chunks) as a
+// scene's main mesh (through its recentred node), and cut beside another.
 TEST(StreamedShare, ATomlScenesMeshFilesReadPerRegionGiveTheShareCutFromTheLoadedScene) {
   const test::ScratchDir dir;
   test::polygonMesh(test::PlyEncoding::kLittleEndian, 0.0, 12).write(dir.path() / "cut.ply");
@@ -159,14 +159,17 @@ file = "twice.off"
 [[generators]]
 name = "flake"
 spec = "sphereflake?depth=1"
+[[generators]]
+name = "land"
+spec = "builtin:landscape?objects=12"
 [[nodes]]
 name = "world"
 instances = [{ node = "cut" }, { node = "far", translate = [-1e7, 0, 5] },
              { node = "twice", translate = [0, 0, 30] }, { node = "twice", translate = [0, 9, 30] },
-             { node = "flake", translate = [40, 0, 0] }]
+             { node = "flake", translate = [40, 0, 0] }, { node = "land", translate = [0, -80, 0] }]
 )")
                               .string(),
-                          3);
+                          4);
   test::polygonMesh(test::PlyEncoding::kBigEndian, 1e7, 220).write(dir.path() / "large.ply");
   expectDeferredEqualsCut(dir.write("one.toml", R"(root = "world"
 [[meshes]]

@@ -60,16 +60,14 @@ std::string item(const std::string& prefix, size_t i) {
   return prefix + "[" + std::to_string(i) + "]";
 }
 
-// A mesh file whose node is deferred: its stream and the colour the TOML scene gives it.
-struct DeferredFile {
-  std::shared_ptr<const MeshStream> stream;
-  std::optional<Rgba8> color;
-};
+// A deferred node's triangles: one pass over them, chunk by chunk, as the loaded node holds them.
+using DeferredChunks = std::function<void(const std::function<void(const Mesh&)>&)>;
 
 class TomlSceneReader {
  public:
-  // deferred: where streamed files go, their nodes deferred (nullptr: every file loaded).
-  TomlSceneReader(const std::filesystem::path& path, std::map<uint32_t, DeferredFile>* deferred)
+  // deferred: where streamed files and generators go, their nodes deferred (nullptr: every one
+  // loaded).
+  TomlSceneReader(const std::filesystem::path& path, std::map<uint32_t, DeferredChunks>* deferred)
       : path_(path), file_(path.string()), dir_(path.parent_path()), deferred_(deferred) {}
 
   Scene read();
@@ -112,6 +110,9 @@ class TomlSceneReader {
   std::optional<uint32_t> addDeferredFile(const std::filesystem::path& file,
                                           const std::optional<Rgba8>& color);
   void readGenerators(const toml::array& a);
+  // The generator's node as addBuiltin makes it, deferred; nullopt when it does not stream as one
+  // mesh (a procedural object keeps its definition, other generators make graphs).
+  std::optional<Generated> addDeferredGenerator(const std::string& spec);
   void readNodes(const toml::array& a);
   glm::dmat4 readTransform(const toml::table& t, const std::string& field) const;
   void addName(const toml::table& t, const std::string& prefix, Entry entry);
@@ -122,7 +123,7 @@ class TomlSceneReader {
   std::filesystem::path dir_;
   Scene scene_;
   std::map<std::string, Entry, std::less<>> names_;
-  std::map<uint32_t, DeferredFile>* deferred_;
+  std::map<uint32_t, DeferredChunks>* deferred_;
 };
 
 void TomlSceneReader::allowOnly(const toml::table& t, std::initializer_list<std::string_view> keys,
@@ -276,8 +277,34 @@ std::optional<uint32_t> TomlSceneReader::addDeferredFile(const std::filesystem::
   }
   scene_.nodes[holder].deferred = DeferredMesh{stream->triangles(), stream->storedBounds()};
   scene_.stats.merge(stream->stats());
-  deferred_->emplace(holder, DeferredFile{std::move(stream), color});
+  deferred_->emplace(holder, [stream, color](const std::function<void(const Mesh&)>& to) {
+    if (!color) return stream->forEachChunk(to);
+    stream->forEachChunk([&](const Mesh& chunk) {
+      Mesh coloured = chunk;
+      coloured.colors.assign(1, *color);
+      to(coloured);
+    });
+  });
   return node;
+}
+
+std::optional<Generated> TomlSceneReader::addDeferredGenerator(const std::string& spec) {
+  if (!deferred_) return std::nullopt;
+  std::optional<BuiltinChunks> chunks = builtinChunks(spec);
+  if (!chunks || chunks->procedural) return std::nullopt;
+  // One pass for the count and box, as opening a mesh file reads it once.
+  DeferredMesh mesh;
+  scene_.stats.merge(chunks->generate([&](const Mesh& chunk) {
+    mesh.triangles += chunk.size();
+    for (const glm::vec3& p : chunk.positions) mesh.bounds.extend(glm::dvec3(p));
+  }));
+  Generated g;
+  g.root = scene_.addNode(spec.substr(0, spec.find('?')));
+  g.camera = chunks->camera;
+  scene_.nodes[g.root].deferred = mesh;
+  deferred_->emplace(g.root, [generate = std::move(chunks->generate)](
+                                 const std::function<void(const Mesh&)>& to) { generate(to); });
+  return g;
 }
 
 void TomlSceneReader::readGenerators(const toml::array& a) {
@@ -290,7 +317,8 @@ void TomlSceneReader::readGenerators(const toml::array& a) {
     if (spec.rfind("builtin:", 0) == 0) spec = spec.substr(8);
     Generated g;
     try {
-      g = addBuiltin(scene_, spec, dir_);
+      const std::optional<Generated> deferred = addDeferredGenerator(spec);
+      g = deferred ? *deferred : addBuiltin(scene_, spec, dir_);
     } catch (const InputError& e) {
       fail(specNode, sub(field, "spec"), e.what());
     }
@@ -487,17 +515,11 @@ Scene loadTomlScene(const std::filesystem::path& path) {
 TomlOutline loadTomlOutline(const std::filesystem::path& path) {
   std::error_code ec;
   require(std::filesystem::is_regular_file(path, ec), path.string(), "file not found");
-  auto files = std::make_shared<std::map<uint32_t, DeferredFile>>();
+  auto deferred = std::make_shared<std::map<uint32_t, DeferredChunks>>();
   TomlOutline out;
-  out.scene = TomlSceneReader(path, files.get()).read();
-  out.read = [files](uint32_t node, const std::function<void(const Mesh&)>& to) {
-    const DeferredFile& file = files->at(node);
-    if (!file.color) return file.stream->forEachChunk(to);
-    file.stream->forEachChunk([&](const Mesh& chunk) {
-      Mesh coloured = chunk;
-      coloured.colors.assign(1, *file.color);
-      to(coloured);
-    });
+  out.scene = TomlSceneReader(path, deferred.get()).read();
+  out.read = [deferred](uint32_t node, const std::function<void(const Mesh&)>& to) {
+    deferred->at(node)(to);
   };
   return out;
 }

@@ -14,10 +14,11 @@ namespace lzb {
 Scene loadTomlScene(const std::filesystem::path& path);
 
 // The scene loadTomlScene makes, with the triangles of its streamed mesh files ([[meshes]] in a
-// format MeshStream reads, src/scene/mesh_stream.hpp) not read: their nodes are deferred (their
-// count, and their bounds from one pass) and `read` hands out their triangles, the loaded
-// scene's in its ID order, as often as asked. Other files and generators are loaded. For a
-// rank's share under --distribute data (src/cli/toml_share.hpp).
+// format MeshStream reads, src/scene/mesh_stream.hpp) and of its generators that stream as one
+// mesh (landscape) not read: their nodes are deferred (their count, and their bounds from one
+// pass) and `read` hands out their triangles, the loaded scene's in its ID order, as often as
+// asked. Other files and generators are loaded. For a rank's share under --distribute data
+// (src/cli/distribute.hpp).
 struct TomlOutline {
   Scene scene;
   DeferredReader read;
