@@ -90,8 +90,14 @@ std::vector<uint64_t> trianglesPerRank(const Scene& whole, uint32_t regions, Par
   if (!regions) regions = defaultRegions(whole.uniqueTriangles(), layout);
   const SceneUnits units = sceneUnits(whole, regions, wholeProcedural);
   const WeightedUnits w = weigh(whole, units);
+  return trianglesPerRank(w.centres, w.triangles, regions, ranks);
+}
+
+std::vector<uint64_t> trianglesPerRank(std::span<const glm::dvec3> centres,
+                                       std::span<const uint64_t> triangles, uint32_t regions,
+                                       int ranks) {
   const std::vector<uint64_t> regionTriangles =
-      trianglesOfRegions(splitIntoRegions(w.centres, w.triangles, regions), w.triangles, regions);
+      trianglesOfRegions(splitIntoRegions(centres, triangles, regions), triangles, regions);
   std::vector<uint64_t> held(size_t(ranks), 0);
   for (int r = 0; r < ranks; ++r)
     for (uint32_t region : regionsOfRank(regionTriangles, WorkShare{r, ranks}))

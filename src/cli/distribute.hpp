@@ -69,6 +69,10 @@ HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share
 // (0: defaultRegions) for a method of `layout`: what holdShare keeps, without keeping it.
 std::vector<uint64_t> trianglesPerRank(const Scene& whole, uint32_t regions, Parts layout,
                                        bool wholeProcedural, int ranks);
+// The same from the units' world centres and triangles (empty: one each), `regions` regions.
+std::vector<uint64_t> trianglesPerRank(std::span<const glm::dvec3> centres,
+                                       std::span<const uint64_t> triangles, uint32_t regions,
+                                       int ranks);
 
 // Which of this rank's parts each unit goes to, given the units' world centres and triangles
 // (empty: one each), with held.regions set: cuts the regions (splitIntoRegions), deals them

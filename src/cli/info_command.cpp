@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <optional>
 
 #include "src/cli/distribute.hpp"
 #include "src/cli/memory_estimate.hpp"
 #include "src/cli/methods.hpp"
 #include "src/cli/report.hpp"
+#include "src/cli/streamed_share.hpp"
 #include "src/core/error.hpp"
 #include "src/core/system.hpp"
 #include "src/core/timer.hpp"
@@ -48,16 +50,14 @@ void printEstimate(const nlohmann::json& e) {
   if (ranks.size() > kListed) std::printf("  ... (--json lists every rank)\n");
 }
 
-// The estimated peak of each rank (memory_estimate.hpp), frame buffers excluded.
-nlohmann::json rankEstimates(const InfoArgs& a, const Scene& scene) {
-  std::vector<uint64_t> held(size_t(a.ranks), scene.uniqueTriangles());
-  if (parseDistribution(a.distribute, "--distribute") == Distribution::kData)
-    held = trianglesPerRank(scene, a.regions, partsFor(a.method), wholeProceduralFor(a.method),
-                            a.ranks);
+// The estimated peak of each rank (memory_estimate.hpp), frame buffers excluded, from the
+// triangles each would hold.
+nlohmann::json rankEstimates(const InfoArgs& a, const std::vector<uint64_t>& held,
+                             uint64_t unique) {
   nlohmann::json ranks = nlohmann::json::array();
   for (int r = 0; r < a.ranks; ++r) {
     // An instanced share holds at most the scene's unique triangles.
-    const uint64_t triangles = std::min(held[size_t(r)], scene.uniqueTriangles());
+    const uint64_t triangles = std::min(held[size_t(r)], unique);
     ranks.push_back({{"rank", r},
                      {"triangles", triangles},
                      {"peak_bytes", methodPeakBytes(a.method, triangles)}});
@@ -71,6 +71,53 @@ nlohmann::json rankEstimates(const InfoArgs& a, const Scene& scene) {
           {"usable_bytes", usableMemoryBytes()}};
 }
 
+nlohmann::json rankEstimates(const InfoArgs& a, const Scene& scene) {
+  std::vector<uint64_t> held(size_t(a.ranks), scene.uniqueTriangles());
+  if (parseDistribution(a.distribute, "--distribute") == Distribution::kData)
+    held = trianglesPerRank(scene, a.regions, partsFor(a.method), wholeProceduralFor(a.method),
+                            a.ranks);
+  return rankEstimates(a, held, scene.uniqueTriangles());
+}
+
+// The scene under --distribute data as the ranks would read it, when they would stream it.
+std::optional<ChunkedScene> streamedForData(const InfoArgs& a, bool talk) {
+  if (parseDistribution(a.distribute, "--distribute") != Distribution::kData) return std::nullopt;
+  std::optional<ChunkedScene> chunked = openChunkedScene(a.scene, !talk);
+  if (chunked && chunked->procedural && wholeProceduralFor(a.method)) chunked.reset();
+  return chunked;
+}
+
+// A streamed scene's figures and estimate from one pass over it (its centres), never holding it:
+// no octrees, no scene model.
+int infoStreamed(const InfoArgs& a, const mpi::Group& g, const ChunkedScene& chunked) {
+  Stopwatch clock;
+  SceneOutline outline;
+  const std::vector<uint64_t> held =
+      streamedTrianglesPerRank(chunked, a.regions, partsFor(a.method), a.ranks, outline);
+  nlohmann::json info = sceneSummary(outline);
+  info["streamed"] = true;
+  info["memory"] = {{"peak_resident_bytes", peakMemoryBytes()}};
+  info["seconds"] = {{"centres", clock.seconds()}};
+  info["estimate"] = rankEstimates(a, held, outline.uniqueTriangles);
+  if (!g.root()) return 0;
+  if (a.json) {
+    std::printf("%s\n", info.dump(2).c_str());
+    return 0;
+  }
+  const Bounds& b = outline.bounds;
+  std::printf("scene:      %s (streamed: read once for its centres, never held; no octrees)\n",
+              outline.source.c_str());
+  std::printf("triangles:  %llu\n", (unsigned long long)outline.uniqueTriangles);
+  std::printf("dropped:    %llu degenerate, %llu non-finite\n",
+              (unsigned long long)outline.stats.degenerate,
+              (unsigned long long)outline.stats.nonFinite);
+  std::printf("bounds:     [%g, %g, %g] - [%g, %g, %g]\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y,
+              b.hi.z);
+  std::printf("memory:     peak resident %.1f MB\n", double(peakMemoryBytes()) / 1e6);
+  printEstimate(info["estimate"]);
+  return 0;
+}
+
 }  // namespace
 
 int runInfo(const InfoArgs& a, const mpi::Group& g) {
@@ -82,6 +129,8 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   require(parseDistribution(a.distribute, "--distribute") != Distribution::kAuto, "--distribute",
           "info estimates replicate or data, not auto");
   const bool talk = g.root() && !a.quiet;
+  if (const std::optional<ChunkedScene> chunked = streamedForData(a, talk))
+    return infoStreamed(a, g, *chunked);
   Stopwatch clock;
   const Scene scene = loadScene(a.scene, !talk);
   const double loadSeconds = clock.lap();

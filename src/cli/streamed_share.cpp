@@ -48,6 +48,14 @@ void keepTriangles(const ChunkedScene& scene, const PartOf& partOf, uint32_t mes
 
 }  // namespace
 
+std::vector<uint64_t> streamedTrianglesPerRank(const ChunkedScene& scene, uint32_t regions,
+                                               Parts layout, int ranks, SceneOutline& outline) {
+  Bounds box;
+  const std::vector<glm::dvec3> centres = centresOf(scene, box, outline);
+  if (!regions) regions = defaultRegions(outline.uniqueTriangles, layout);
+  return trianglesPerRank(centres, {}, regions, ranks);
+}
+
 HeldShare holdStreamedShare(const ChunkedScene& scene, uint32_t regions, const WorkShare& share,
                             Parts layout, SceneOutline& outline,
                             const std::function<void(const HeldShare&)>& beforeKeeping) {

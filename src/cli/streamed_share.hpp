@@ -22,4 +22,9 @@ HeldShare holdStreamedShare(const ChunkedScene& scene, uint32_t regions, const W
                             Parts layout, SceneOutline& outline,
                             const std::function<void(const HeldShare&)>& beforeKeeping = {});
 
+// The triangles each of `ranks` ranks would hold (trianglesPerRank) and the outline, from the
+// first pass alone: what lzb info estimates without holding the scene.
+std::vector<uint64_t> streamedTrianglesPerRank(const ChunkedScene& scene, uint32_t regions,
+                                               Parts layout, int ranks, SceneOutline& outline);
+
 }  // namespace lzb
