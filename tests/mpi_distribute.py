@@ -181,11 +181,12 @@ def check_run(lzb, work, name, replicated):
             [lzb, "info", rep["scene"]["source"], "--json", "--quiet", "--ranks", "3",
              "--distribute", "data", "--regions", "7", "--method", rep["method"]],
             check=True, capture_output=True, text=True).stdout)
-        # A streamed scene is estimated from its centres alone, never held (no octrees).
+        # A streamed scene (and a TOML scene's files) is estimated from its centres alone,
+        # never held (no octrees).
         source = rep["scene"]["source"]
-        streams = source.endswith((".ply", ".off", ".obj")) or source.startswith(
+        streams = source.endswith((".ply", ".off", ".obj", ".toml")) or source.startswith(
             ("builtin:landscape", "builtin:terrain", "builtin:displaced"))
-        assert info.get("streamed", False) == streams, ("info streamed", info.get("streamed"))
+        assert bool(info.get("streamed")) == streams, ("info streamed", info.get("streamed"))
         # (An instanced share is estimated as at most the scene's unique triangles.)
         estimated = [r["triangles"] for r in info["estimate"]["ranks"]]
         held_unique = [min(int(s), info["triangles_unique"]) for s in shares]

@@ -86,10 +86,11 @@ WeightedUnits weigh(const Scene& whole, const SceneUnits& units, const DeferredR
 }  // namespace
 
 std::vector<uint64_t> trianglesPerRank(const Scene& whole, uint32_t regions, Parts layout,
-                                       bool wholeProcedural, int ranks) {
+                                       bool wholeProcedural, int ranks,
+                                       const DeferredReader& read) {
   if (!regions) regions = defaultRegions(whole.uniqueTriangles(), layout);
   const SceneUnits units = sceneUnits(whole, regions, wholeProcedural);
-  const WeightedUnits w = weigh(whole, units);
+  const WeightedUnits w = weigh(whole, units, read);
   return trianglesPerRank(w.centres, w.triangles, regions, ranks);
 }
 

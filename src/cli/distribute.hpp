@@ -66,9 +66,11 @@ HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share
                     const std::function<void(const HeldShare&)>& beforeKeeping = {});
 
 // The triangles (expanded) each of `ranks` ranks would hold of `whole` cut into `regions` regions
-// (0: defaultRegions) for a method of `layout`: what holdShare keeps, without keeping it.
+// (0: defaultRegions) for a method of `layout`: what holdShare keeps, without keeping it (a
+// deferred node's centres read through `read`).
 std::vector<uint64_t> trianglesPerRank(const Scene& whole, uint32_t regions, Parts layout,
-                                       bool wholeProcedural, int ranks);
+                                       bool wholeProcedural, int ranks,
+                                       const DeferredReader& read = {});
 // The same from the units' world centres and triangles (empty: one each), `regions` regions.
 std::vector<uint64_t> trianglesPerRank(std::span<const glm::dvec3> centres,
                                        std::span<const uint64_t> triangles, uint32_t regions,

@@ -87,17 +87,14 @@ std::optional<ChunkedScene> streamedForData(const InfoArgs& a, bool talk) {
   return chunked;
 }
 
-// A streamed scene's figures and estimate from one pass over it (its centres), never holding it:
-// no octrees, no scene model.
-int infoStreamed(const InfoArgs& a, const mpi::Group& g, const ChunkedScene& chunked) {
-  Stopwatch clock;
-  SceneOutline outline;
-  const std::vector<uint64_t> held =
-      streamedTrianglesPerRank(chunked, a.regions, partsFor(a.method), a.ranks, outline);
+// A scene's figures and estimate from its outline and the triangles each rank would hold, the
+// scene never held whole (how: what the report's "streamed" says): no octrees, no scene model.
+int infoWithoutHolding(const InfoArgs& a, const mpi::Group& g, const SceneOutline& outline,
+                       const std::vector<uint64_t>& held, const std::string& how, double seconds) {
   nlohmann::json info = sceneSummary(outline);
-  info["streamed"] = true;
+  info["streamed"] = how;
   info["memory"] = {{"peak_resident_bytes", peakMemoryBytes()}};
-  info["seconds"] = {{"centres", clock.seconds()}};
+  info["seconds"] = {{"centres", seconds}};
   info["estimate"] = rankEstimates(a, held, outline.uniqueTriangles);
   if (!g.root()) return 0;
   if (a.json) {
@@ -105,9 +102,10 @@ int infoStreamed(const InfoArgs& a, const mpi::Group& g, const ChunkedScene& chu
     return 0;
   }
   const Bounds& b = outline.bounds;
-  std::printf("scene:      %s (streamed: read once for its centres, never held; no octrees)\n",
-              outline.source.c_str());
-  std::printf("triangles:  %llu\n", (unsigned long long)outline.uniqueTriangles);
+  std::printf("scene:      %s (%s; no octrees)\n", outline.source.c_str(), how.c_str());
+  std::printf("triangles:  %llu unique, %llu expanded\n",
+              (unsigned long long)outline.uniqueTriangles,
+              (unsigned long long)outline.expandedTriangles);
   std::printf("dropped:    %llu degenerate, %llu non-finite\n",
               (unsigned long long)outline.stats.degenerate,
               (unsigned long long)outline.stats.nonFinite);
@@ -129,10 +127,25 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   require(parseDistribution(a.distribute, "--distribute") != Distribution::kAuto, "--distribute",
           "info estimates replicate or data, not auto");
   const bool talk = g.root() && !a.quiet;
-  if (const std::optional<ChunkedScene> chunked = streamedForData(a, talk))
-    return infoStreamed(a, g, *chunked);
+  const bool data = parseDistribution(a.distribute, "--distribute") == Distribution::kData;
   Stopwatch clock;
-  const Scene scene = loadScene(a.scene, !talk);
+  // Under data, as the ranks read it: a streamed scene once for its centres, a TOML scene's
+  // streamed files and landscapes per file, never the whole scene held.
+  if (const std::optional<ChunkedScene> chunked = streamedForData(a, talk)) {
+    SceneOutline outline;
+    const std::vector<uint64_t> held =
+        streamedTrianglesPerRank(*chunked, a.regions, partsFor(a.method), a.ranks, outline);
+    return infoWithoutHolding(a, g, outline, held,
+                              "streamed: read once for its centres, never held", clock.seconds());
+  }
+  TomlOutline read = data ? loadSceneDeferred(a.scene, !talk) : TomlOutline{};
+  if (read.read)
+    return infoWithoutHolding(
+        a, g, outlineOf(read.scene),
+        trianglesPerRank(read.scene, a.regions, partsFor(a.method), wholeProceduralFor(a.method),
+                         a.ranks, read.read),
+        "its streamed files and landscapes read for their centres, never held", clock.seconds());
+  const Scene scene = data ? std::move(read.scene) : loadScene(a.scene, !talk);
   const double loadSeconds = clock.lap();
 
   OctreeParams params;
