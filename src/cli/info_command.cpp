@@ -81,7 +81,6 @@ nlohmann::json rankEstimates(const InfoArgs& a, const Scene& scene) {
 
 // The scene under --distribute data as the ranks would read it, when they would stream it.
 std::optional<ChunkedScene> streamedForData(const InfoArgs& a, bool talk) {
-  if (parseDistribution(a.distribute, "--distribute") != Distribution::kData) return std::nullopt;
   std::optional<ChunkedScene> chunked = openChunkedScene(a.scene, !talk);
   if (chunked && chunked->procedural && wholeProceduralFor(a.method)) chunked.reset();
   return chunked;
@@ -131,7 +130,7 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   Stopwatch clock;
   // Under data, as the ranks read it: a streamed scene once for its centres, a TOML scene's
   // streamed files and landscapes per file, never the whole scene held.
-  if (const std::optional<ChunkedScene> chunked = streamedForData(a, talk)) {
+  if (const std::optional<ChunkedScene> chunked = data ? streamedForData(a, talk) : std::nullopt) {
     SceneOutline outline;
     const std::vector<uint64_t> held =
         streamedTrianglesPerRank(*chunked, a.regions, partsFor(a.method), a.ranks, outline);
