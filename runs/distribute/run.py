@@ -18,9 +18,9 @@ where the data-mode frame goes.
 Then the city (builtin:city, instanced) at 640x480 and 1920x1080 for raycast, the hybrid and
 lzb: 1 x 2 and 2 x 1 replicated, 2 x 1 and 4 x 1 in data mode (12 frames, the first dropped).
 
-Usage: python3 runs/distribute/run.py [--quick] [--ranks | --composite | --stages | --city]
-       (from the repository root, after scripts/build.sh; --ranks, --composite, --stages,
-       --city: that part alone)
+Usage: python3 runs/distribute/run.py [--quick]
+       [--ranks | --capacity | --composite | --stages | --city]
+       (from the repository root, after scripts/build.sh; each flag: that part alone)
 Writes runs/distribute/ranks.csv (one row per configuration and rank), capacity.csv,
 composite.csv, stages.csv and city.csv.
 """
@@ -35,7 +35,7 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402
 
-common.accept_args(flags=("--quick", "--ranks", "--composite", "--stages", "--city"))
+common.accept_args(flags=("--quick", "--ranks", "--capacity", "--composite", "--stages", "--city"))
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 QUICK = "--quick" in sys.argv
@@ -241,6 +241,9 @@ def main():
         return
     work = tempfile.mkdtemp(prefix="lzb-distribute-")
     try:
+        if "--capacity" in sys.argv:
+            capacity_study(work)
+            return
         ranks_study(work)
         if "--ranks" in sys.argv:
             return
