@@ -79,13 +79,6 @@ nlohmann::json rankEstimates(const InfoArgs& a, const Scene& scene) {
   return rankEstimates(a, held, scene.uniqueTriangles());
 }
 
-// The scene under --distribute data as the ranks would read it, when they would stream it.
-std::optional<ChunkedScene> streamedForData(const InfoArgs& a, bool talk) {
-  std::optional<ChunkedScene> chunked = openChunkedScene(a.scene, !talk);
-  if (chunked && chunked->procedural && wholeProceduralFor(a.method)) chunked.reset();
-  return chunked;
-}
-
 // A scene's figures and estimate from its outline and the triangles each rank would hold, the
 // scene never held whole (how: what the report's "streamed" says): no octrees, no scene model.
 int infoWithoutHolding(const InfoArgs& a, const mpi::Group& g, const SceneOutline& outline,
@@ -130,7 +123,8 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   Stopwatch clock;
   // Under data, as the ranks read it: a streamed scene once for its centres, a TOML scene's
   // streamed files and landscapes per file, never the whole scene held.
-  if (const std::optional<ChunkedScene> chunked = data ? streamedForData(a, talk) : std::nullopt) {
+  if (const std::optional<ChunkedScene> chunked =
+          data ? openSharedStream(a.scene, a.method, !talk) : std::nullopt) {
     SceneOutline outline;
     const std::vector<uint64_t> held =
         streamedTrianglesPerRank(*chunked, a.regions, partsFor(a.method), a.ranks, outline);

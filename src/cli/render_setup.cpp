@@ -160,11 +160,7 @@ void loadShareOf(const RenderArgs& a, bool talk, const WorkShare& share, RenderP
                         " of " + std::to_string(held.regions) + " regions)",
                     ": more ranks hold smaller shares");
   };
-  const bool wholeProcedural = wholeProceduralFor(a.method);
-  std::optional<ChunkedScene> chunked = openChunkedScene(a.scene, !talk);
-  // A method that samples a procedural object's definition needs it loaded.
-  if (chunked && chunked->procedural && wholeProcedural) chunked.reset();
-  if (chunked) {
+  if (const std::optional<ChunkedScene> chunked = openSharedStream(a.scene, a.method, !talk)) {
     plan.held = holdStreamedShare(*chunked, a.regions, share, layout, plan.outline,
                                   [&](const HeldShare& held) { refuse(held.triangles, held); });
   } else {
@@ -172,8 +168,8 @@ void loadShareOf(const RenderArgs& a, bool talk, const WorkShare& share, RenderP
     // refused before they are, as lzb info estimates it (a placed mesh held whole, so at most
     // the scene's unique triangles).
     const TomlOutline whole = loadSceneDeferred(a.scene, !talk);
-    plan.held = holdShare(whole.scene, a.regions, share, layout, wholeProcedural, whole.read,
-                          [&](const HeldShare& held) {
+    plan.held = holdShare(whole.scene, a.regions, share, layout, wholeProceduralFor(a.method),
+                          whole.read, [&](const HeldShare& held) {
                             refuse(std::min(held.triangles, whole.scene.uniqueTriangles()), held);
                           });
     plan.outline = outlineOf(whole.scene);

@@ -48,6 +48,13 @@ void keepTriangles(const ChunkedScene& scene, const PartOf& partOf, uint32_t mes
 
 }  // namespace
 
+std::optional<ChunkedScene> openSharedStream(const std::string& spec, const std::string& method,
+                                             bool quiet) {
+  std::optional<ChunkedScene> chunked = openChunkedScene(spec, quiet);
+  if (chunked && chunked->procedural && wholeProceduralFor(method)) chunked.reset();
+  return chunked;
+}
+
 std::vector<uint64_t> streamedTrianglesPerRank(const ChunkedScene& scene, uint32_t regions,
                                                Parts layout, int ranks, SceneOutline& outline) {
   Bounds box;

@@ -7,12 +7,20 @@
 // holdShare and outlineOf give (streamed_share_test), so the frames are too.
 #include <cstdint>
 #include <functional>
+#include <optional>
+#include <string>
 
 #include "src/cli/distribute.hpp"
 #include "src/core/scene_outline.hpp"
 #include "src/scene/chunked_scene.hpp"
 
 namespace lzb {
+
+// `spec` as the ranks read it under --distribute data for `method`: as chunks when it streams
+// (openChunkedScene), except a procedural object for a method that samples its definition, which
+// needs it loaded (nullopt then, as for a scene that does not stream).
+std::optional<ChunkedScene> openSharedStream(const std::string& spec, const std::string& method,
+                                             bool quiet);
 
 // This rank's share of `scene` cut into `regions` regions (0: defaultRegions) in parts of
 // `layout`, and the whole scene's outline. beforeKeeping(held) runs once the regions are dealt,
