@@ -279,24 +279,6 @@ const SceneUnit& SceneUnits::entryOf(size_t u) const {
   return *(after - 1);
 }
 
-namespace {
-
-const Mesh& readMesh(const Scene& scene, const std::vector<uint32_t>& path) {
-  const Node& n = nodeAtPath(scene, path);
-  if (n.deferred)
-    throw std::logic_error("SceneUnits::centre: the triangles of node '" + n.name +
-                           "' are not read");
-  return n.mesh;
-}
-
-}  // namespace
-
-glm::dvec3 SceneUnits::centre(const Scene& scene, size_t u) const {
-  if (u < meshTriangles) return placedCentroid(readMesh(scene, meshPath), u, meshToWorld);
-  const SceneUnit& e = entryOf(u);
-  return e.split ? placedCentroid(readMesh(scene, e.path), u - e.firstUnit, e.toWorld) : e.centre;
-}
-
 void SceneUnits::centres(const Scene& scene, std::vector<glm::dvec3>& out,
                          const DeferredReader& read) const {
   out.resize(size());

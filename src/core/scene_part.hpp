@@ -74,11 +74,10 @@ struct SceneUnits {
   std::vector<SceneUnit> opened;   // the units after them, in ID order
   uint64_t openedUnits = 0;        // the units they make (a split mesh's triangles one each)
   size_t size() const { return meshTriangles + openedUnits; }
-  // Unit u's world centre and expanded triangles.
-  glm::dvec3 centre(const Scene& scene, size_t u) const;
   // Every unit's world centre into `out`, a deferred node's triangles read through `read`.
   void centres(const Scene& scene, std::vector<glm::dvec3>& out,
                const DeferredReader& read = {}) const;
+  // Unit u's expanded triangles.
   uint64_t triangles(size_t u) const;
   // The entry of `opened` holding unit u (>= meshTriangles).
   const SceneUnit& entryOf(size_t u) const;
