@@ -46,13 +46,11 @@ void sortAlongCurve(std::vector<uint32_t>& tris, const std::vector<uint64_t>& co
   });
 }
 
-// Each triangle's area (node frame, double).
+// Each triangle's area (node frame, double), as lzb's set-up measures it.
 std::vector<double> triangleAreas(const Mesh& mesh) {
   std::vector<double> area(mesh.size());
-  for (size_t t = 0; t < mesh.size(); ++t) {
-    const glm::dvec3 v0(mesh.vertex(t, 0)), v1(mesh.vertex(t, 1)), v2(mesh.vertex(t, 2));
-    area[t] = 0.5 * glm::length(glm::cross(v1 - v0, v2 - v0));
-  }
+  for (size_t t = 0; t < mesh.size(); ++t)
+    area[t] = glm::length(localz::areaVector(mesh, uint32_t(t)));
   return area;
 }
 
