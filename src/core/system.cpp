@@ -1,18 +1,17 @@
 #include "src/core/system.hpp"
 
 #include <malloc.h>
+#include <omp.h>
 #include <sched.h>
 #include <sys/resource.h>
-
 #include <unistd.h>
 
 #include <algorithm>
 #include <climits>
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <string>
-
-#include <omp.h>
 
 #include "src/core/error.hpp"
 
@@ -38,9 +37,19 @@ bool keepFreedMemory() {
          mallopt(M_TRIM_THRESHOLD, INT_MAX) == 1;
 }
 
-bool oneArenaUnderAddressLimit() {
+namespace {
+
+// RLIMIT_AS (ulimit -v) in bytes, or nullopt when there is none.
+std::optional<uint64_t> addressSpaceLimit() {
   rlimit limit{};
-  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return false;
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return std::nullopt;
+  return uint64_t(limit.rlim_cur);
+}
+
+}  // namespace
+
+bool oneArenaUnderAddressLimit() {
+  if (!addressSpaceLimit()) return false;
   // glibc reserves 64 MiB of address space for each thread's own arena, untouched but counted
   // by ulimit -v: one heap for every thread (2 x 1 hybrid ranks: 300 instead of 430 MiB mapped
   // before the scene, runs/distribute/README.md).
@@ -73,10 +82,10 @@ uint64_t mappedBytes() {
 // Embree's and llvmpipe's reservations), which the estimates of resident memory leave out.
 uint64_t addressSpaceLeft() {
   constexpr uint64_t kUntouchedReserve = uint64_t(256) << 20;
-  rlimit limit{};
-  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return ~uint64_t(0);
+  const std::optional<uint64_t> limit = addressSpaceLimit();
+  if (!limit) return ~uint64_t(0);
   const uint64_t taken = mappedBytes() + kUntouchedReserve;
-  return uint64_t(limit.rlim_cur) > taken ? uint64_t(limit.rlim_cur) - taken : 0;
+  return *limit > taken ? *limit - taken : 0;
 }
 
 std::string mib(uint64_t bytes) { return std::to_string((bytes + (1u << 20) - 1) >> 20); }
