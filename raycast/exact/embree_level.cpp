@@ -22,14 +22,44 @@ DoubleRay toChild(const UserChild& c, const DoubleRay& r) {
   return {c.toChild * glm::dvec4(r.org, 1.0), c.toChild * glm::dvec4(r.dir, 0.0)};
 }
 
-// Records a child hit in lane i of the parent's ray/hit arrays.
+// After a hit at t, the ray goes on to the next float above t: Embree's packet traversal culls a
+// box whose entry is not below tfar, which would drop a tie in another leaf or instance.
+float tfarAfterHit(float t) {
+  return std::nextafter(t, INFINITY);
+}
+
+// The context filter on a Level's own triangles: keeps a candidate only when it comes before
+// the hit kept so far (Embree has set the lane's tfar to the candidate's t for the call).
+void keepLeastHit(const RTCFilterFunctionNArguments* args) {
+  auto* context = reinterpret_cast<IdContext*>(args->context);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned r = RTCRayN_id(args->ray, args->N, i);
+    const float t = RTCRayN_tfar(args->ray, args->N, i);
+    const uint64_t id = RTCHitN_primID(args->hit, args->N, i);
+    if (!before(t, id, context->ts[r], context->ids[r])) {
+      args->valid[i] = 0;
+      continue;
+    }
+    context->ts[r] = t;
+    context->ids[r] = id;
+    RTCRayN_tfar(args->ray, args->N, i) = tfarAfterHit(t);
+  }
+}
+
+// Records a child hit in lane i of the parent's ray/hit arrays when it comes before the hit
+// kept there (the nested call only returns t <= tfar; a tie goes to the lesser ID).
 void acceptHit(const RTCIntersectFunctionNArguments* args, unsigned i, float t, uint64_t id,
                uint64_t offset) {
+  auto* context = reinterpret_cast<IdContext*>(args->context);
   const unsigned n = args->N;
   RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, n);
   RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, n);
-  // The nested call only accepts t <= tfar, so this hit is the nearest so far.
-  RTCRayN_tfar(ray, n, i) = t;
+  const unsigned r = RTCRayN_id(ray, n, i);
+  if (!before(t, offset + id, context->ts[r], context->ids[r])) return;
+  context->ts[r] = t;
+  context->ids[r] = offset + id;
+  RTCRayN_tfar(ray, n, i) = tfarAfterHit(t);
   RTCHitN_Ng_x(hit, n, i) = 0.0f;  // lzb shades from the ID, not from Embree's normal
   RTCHitN_Ng_y(hit, n, i) = 0.0f;
   RTCHitN_Ng_z(hit, n, i) = 1.0f;
@@ -38,7 +68,6 @@ void acceptHit(const RTCIntersectFunctionNArguments* args, unsigned i, float t, 
   RTCHitN_primID(hit, n, i) = args->primID;
   RTCHitN_geomID(hit, n, i) = args->geomID;
   RTCHitN_instID(hit, n, i, 0) = args->context->instID[0];
-  reinterpret_cast<IdContext*>(args->context)->ids[RTCRayN_id(ray, n, i)] = offset + id;
 }
 
 void intersectLanes(const RTCIntersectFunctionNArguments* args, const UserChild& c) {
@@ -65,25 +94,21 @@ void intersectPacket(const RTCIntersectFunctionNArguments* args, const UserChild
   alignas(64) int valid[N];
   DoubleRay rays[N];
   uint64_t ids[N];
+  float ts[N];
   for (int k = 0; k < N; ++k) {
     const bool active = args->valid[k] == -1;
     rays[k] = active ? toChild(c, context->rays[RTCRayN_id(ray, N, unsigned(k))])
                      : DoubleRay{glm::dvec3(0.0), glm::dvec3(0.0, 0.0, 1.0)};
+    ts[k] = active ? RTCRayN_tfar(ray, N, unsigned(k)) : -INFINITY;
     setPacketLane(p, valid, k, active, rays[k], active ? RTCRayN_tnear(ray, N, unsigned(k)) : 0.0f,
-                  active ? RTCRayN_tfar(ray, N, unsigned(k)) : -INFINITY);
+                  ts[k]);
     ids[k] = kMiss;
   }
   IdContext sub;
-  rtcInitIntersectContext(&sub.ctx);
-  sub.ctx.flags = args->context->flags;
-  sub.rays = rays;
-  sub.ids = ids;
+  initContext(sub, rays, ids, ts, args->context->flags);
   intersectPacketN<N>(valid, c.child->scene, &sub.ctx, p);
-  for (int k = 0; k < N; ++k) {
-    if (!valid[k]) continue;
-    const uint64_t id = decode(*c.child, p.hit.geomID[k], p.hit.primID[k], ids[k]);
-    if (id != kMiss) acceptHit(args, unsigned(k), p.ray.tfar[k], id, c.offset);
-  }
+  for (int k = 0; k < N; ++k)
+    if (valid[k] && ids[k] != kMiss) acceptHit(args, unsigned(k), ts[k], ids[k], c.offset);
 }
 
 void intersectChild(const RTCIntersectFunctionNArguments* args) {
@@ -146,15 +171,25 @@ void setRayHit(RTCRayHit& rh, const DoubleRay& ray, float tnear, float tfar) {
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
 }
 
-uint64_t intersect1(const Level& level, RTCRayHit& rh, const DoubleRay& ray) {
-  uint64_t userId = kMiss;
-  IdContext context;
+void initContext(IdContext& context, const DoubleRay* rays, uint64_t* ids, float* ts,
+                 RTCIntersectContextFlags flags) {
   rtcInitIntersectContext(&context.ctx);
-  context.rays = &ray;
-  context.ids = &userId;
+  context.ctx.flags = flags;
+  context.ctx.filter = keepLeastHit;
+  context.rays = rays;
+  context.ids = ids;
+  context.ts = ts;
+}
+
+uint64_t intersect1(const Level& level, RTCRayHit& rh, const DoubleRay& ray) {
+  uint64_t id = kMiss;
+  float t = rh.ray.tfar;
+  IdContext context;
+  initContext(context, &ray, &id, &t, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT);
   rh.ray.id = 0;
   rtcIntersect1(level.scene, &context.ctx, &rh);
-  return decode(level, rh.hit.geomID, rh.hit.primID, userId);
+  rh.ray.tfar = t;
+  return id;
 }
 
 }  // namespace lzb::embree

@@ -16,7 +16,13 @@
 // the origin, with no per-camera rebuild.
 //
 // Expanded IDs: a hit on the node's own triangles is its primID; a hit on an instance is
-// Scene::childOffset plus the ID found below, which the callback leaves in IdContext::ids.
+// Scene::childOffset plus the ID found below.
+//
+// Ties: every query keeps the least (t, expanded ID), as the depth composite's key does, so a
+// ray that meets two triangles at the same t (a shared edge, a coplanar overlap) names the same
+// one whatever the BVH, its traversal order or the split of the scene across ranks. A context
+// filter orders the node's own triangles (Embree presents every candidate at t <= tfar to it,
+// also the others of the same leaf); the instance callback orders what comes from below.
 #include <cstdint>
 #include <vector>
 
@@ -50,18 +56,22 @@ struct DoubleRay {
   glm::dvec3 org, dir;
 };
 
-// The context of every rtcIntersect call on a Level; Embree hands it to the callbacks, which
-// find a lane's entries through RTCRay::id.
+// The context of every rtcIntersect call on a Level; Embree hands it to the filter and the
+// callbacks, which find a lane's entries through RTCRay::id.
 struct IdContext {
   RTCIntersectContext ctx;  // first member: Embree sees a plain RTCIntersectContext
   const DoubleRay* rays;    // per ray id: the ray in the Level's frame
-  uint64_t* ids;            // per ray id: the ID below the latest accepted instance hit
+  uint64_t* ids;            // per ray id: the expanded ID of the hit kept so far, or kMiss
+  float* ts;                // per ray id: its t (before a hit: the ray's tfar)
 };
 
-// The expanded ID (relative to the Level's node) of a hit, or kMiss.
-inline uint64_t decode(const Level& level, unsigned geomID, unsigned primID, uint64_t userId) {
-  if (geomID == RTC_INVALID_GEOMETRY_ID) return kMiss;
-  return geomID == level.meshGeom ? primID : userId;
+// Sets up `context` with its filter; the caller sets ids[] = kMiss and ts[] = each ray's tfar.
+void initContext(IdContext& context, const DoubleRay* rays, uint64_t* ids, float* ts,
+                 RTCIntersectContextFlags flags);
+
+// Whether a hit at (t, id) comes before the one kept at (keptT, keptId).
+inline bool before(float t, uint64_t id, float keptT, uint64_t keptId) {
+  return t < keptT || (t == keptT && id < keptId);
 }
 
 // Creates the user geometry of level.userChildren (when there are any) and attaches it.
@@ -71,7 +81,8 @@ void attachUserChildren(RTCDevice device, Level& level);
 void setRayHit(RTCRayHit& rh, const DoubleRay& ray, float tnear, float tfar);
 
 // Traces one ray through `level` (rh from setRayHit, ray its double version); returns the
-// expanded ID relative to the level's node, or kMiss; rh.ray.tfar is the hit distance.
+// expanded ID relative to the level's node (the least at the nearest t), or kMiss;
+// rh.ray.tfar is the hit distance.
 uint64_t intersect1(const Level& level, RTCRayHit& rh, const DoubleRay& ray);
 
 // Lane k of a packet: the float copy of `ray` from tnear to tfar (an inactive lane: pass

@@ -143,7 +143,7 @@ struct EmbreeScene::Impl {
     if (levels[node]) return *levels[node];
     auto level = std::make_unique<Level>();
     level->scene = rtcNewScene(device);
-    rtcSetSceneFlags(level->scene, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneFlags(level->scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
     rtcSetSceneBuildQuality(level->scene, quality());
     const Node& n = scene.nodes[node];
     if (!n.mesh.empty()) attachMesh(*level, n.mesh, shift[node], n.name);
@@ -225,23 +225,19 @@ void intersectPacket(const Level& root, const DoubleRay* rays, const Ray* src, s
   alignas(64) RTCRayHitNt<N> p;
   alignas(64) int valid[N];
   uint64_t ids[N];
+  float ts[N];
   for (int k = 0; k < N; ++k) {
     const bool active = size_t(k) < count;
+    ts[k] = active ? roundUp(src[k].tfar) : -INFINITY;
     embree::setPacketLane(p, valid, k, active, rays[active ? k : 0],
-                          active ? std::max(roundDown(src[k].tnear), 0.0f) : 0.0f,
-                          active ? roundUp(src[k].tfar) : -INFINITY);
+                          active ? std::max(roundDown(src[k].tnear), 0.0f) : 0.0f, ts[k]);
     ids[k] = embree::kMiss;
   }
   embree::IdContext context;
-  rtcInitIntersectContext(&context.ctx);
-  context.ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  context.rays = rays;
-  context.ids = ids;
+  embree::initContext(context, rays, ids, ts, RTC_INTERSECT_CONTEXT_FLAG_COHERENT);
   embree::intersectPacketN<N>(valid, root.scene, &context.ctx, p);
-  for (size_t k = 0; k < count; ++k) {
-    const uint64_t id = embree::decode(root, p.hit.geomID[k], p.hit.primID[k], ids[k]);
-    hits[k] = id == embree::kMiss ? RayHit{} : RayHit{p.ray.tfar[k], id};
-  }
+  for (size_t k = 0; k < count; ++k)
+    hits[k] = ids[k] == embree::kMiss ? RayHit{} : RayHit{ts[k], ids[k]};
 }
 
 }  // namespace

@@ -262,6 +262,74 @@ TEST(EmbreeScene, RaysThroughASharedVertexDoNotLeak) {
   }
 }
 
+// Rays down onto z = 0 over [-0.9, 0.9]^2 (dyadic origins: every copy of a triangle gives them
+// the same t), one at a time and as packets: the IDs found.
+constexpr int kSide = 31;
+std::vector<uint64_t> idsOfRaysDown(const EmbreeScene& embree, bool packets) {
+  std::vector<Ray> rays;
+  for (int y = 0; y < kSide; ++y)
+    for (int x = 0; x < kSide; ++x)
+      rays.push_back({{(x - 15) / 16.0, (y - 15) / 16.0, 2.0}, {0.0, 0.0, -1.0}, 0.1, 10.0});
+  std::vector<RayHit> hits(rays.size());
+  if (packets)
+    embree.intersect(rays, hits);
+  else
+    for (size_t i = 0; i < rays.size(); ++i)
+      hits[i] = embree.intersect(rays[i].origin, rays[i].dir, rays[i].tnear, rays[i].tfar);
+  std::vector<uint64_t> ids;
+  for (const RayHit& h : hits) {
+    EXPECT_EQ(h.t, 2.0f);
+    ids.push_back(h.id);
+  }
+  return ids;
+}
+
+// The least ID of the quad whose triangle `first` (below the diagonal) or first + 1 holds ray i;
+// on the diagonal both hold it.
+uint64_t quadTriangle(size_t i, uint64_t first) {
+  return i / kSide <= i % kSide ? first : first + 1;
+}
+
+// The depth composite keeps the least (depth, ID); Embree alone keeps whichever of equal-t hits
+// its traversal meets last. 300 copies of one quad (IDs 40..639, after 40 random triangles that
+// spread the BVH) fill many leaves with one box: every ray must name the first copy.
+TEST(EmbreeScene, TiesAtEqualDepthGoToTheLeastId) {
+  Scene scene;
+  scene.addNode("copies");
+  std::mt19937_64 rng(3);
+  Mesh& mesh = scene.nodes[0].mesh;
+  test::addRandomTriangles(mesh, 40, 0.2, rng);
+  for (glm::vec3& p : mesh.positions) p.z -= 3.0f;  // behind z = 0: no ray meets them first
+  for (int copy = 0; copy < 300; ++copy) test::addQuad(mesh);
+  scene.finalize();
+  for (bool packets : {false, true}) {
+    const std::vector<uint64_t> ids = idsOfRaysDown(EmbreeScene(scene, {}), packets);
+    for (size_t i = 0; i < ids.size(); ++i) EXPECT_EQ(ids[i], quadTriangle(i, 40)) << "ray " << i;
+  }
+}
+
+// The same through instances: the root's own quad, then two instances of a node of 50 quads,
+// all in one place; the root's triangles come first in the expanded IDs.
+TEST(EmbreeScene, TiesAcrossInstancesGoToTheLeastId) {
+  Scene scene;
+  scene.root = scene.addNode("root");
+  const uint32_t copies = scene.addNode("copies");
+  for (int copy = 0; copy < 50; ++copy) test::addQuad(scene.nodes[copies].mesh);
+  scene.nodes[scene.root].instances.push_back({copies, glm::dmat4(1.0)});
+  scene.nodes[scene.root].instances.push_back({copies, glm::dmat4(1.0)});
+  scene.finalize();
+  for (bool packets : {false, true}) {
+    const std::vector<uint64_t> ids = idsOfRaysDown(EmbreeScene(scene, {}), packets);
+    for (size_t i = 0; i < ids.size(); ++i) EXPECT_EQ(ids[i], quadTriangle(i, 0)) << "ray " << i;
+  }
+  test::addQuad(scene.nodes[scene.root].mesh);
+  scene.finalize();
+  for (bool packets : {false, true}) {
+    const std::vector<uint64_t> ids = idsOfRaysDown(EmbreeScene(scene, {}), packets);
+    for (size_t i = 0; i < ids.size(); ++i) EXPECT_EQ(ids[i], quadTriangle(i, 0)) << "ray " << i;
+  }
+}
+
 TEST(EmbreeScene, EmptySceneMissesEverything) {
   Scene scene;
   scene.addNode("empty");
