@@ -131,7 +131,8 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
     return infoWithoutHolding(a, g, outline, held,
                               "streamed: read once for its centres, never held", clock.seconds());
   }
-  TomlOutline read = data ? loadSceneDeferred(a.scene, !talk) : TomlOutline{};
+  TomlOutline read =
+      data ? loadSceneDeferred(a.scene, !talk, !wholeProceduralFor(a.method)) : TomlOutline{};
   if (read.read)
     return infoWithoutHolding(
         a, g, outlineOf(read.scene),

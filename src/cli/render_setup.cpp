@@ -167,7 +167,7 @@ void loadShareOf(const RenderArgs& a, bool talk, const WorkShare& share, RenderP
     // A TOML scene's streamed mesh files are read per region, never whole; the share is
     // refused before they are, as lzb info estimates it (a placed mesh held whole, so at most
     // the scene's unique triangles).
-    const TomlOutline whole = loadSceneDeferred(a.scene, !talk);
+    const TomlOutline whole = loadSceneDeferred(a.scene, !talk, !wholeProceduralFor(a.method));
     plan.held = holdShare(whole.scene, a.regions, share, layout, wholeProceduralFor(a.method),
                           whole.read, [&](const HeldShare& held) {
                             refuse(std::min(held.triangles, whole.scene.uniqueTriangles()), held);

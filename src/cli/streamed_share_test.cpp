@@ -119,33 +119,37 @@ TEST(StreamedShare, AProceduralObjectGeneratedInRowsGivesTheShareCutFromTheLoade
 }
 
 // A TOML scene's mesh files read through its outline (loadSceneDeferred) give the parts cut from
-// the loaded scene, for every layout, region and rank count.
-void expectDeferredEqualsCut(const std::string& toml, size_t deferredFiles) {
+// the loaded scene, for every layout, region and rank count; its procedural generators deferred
+// too unless the method samples them (wholeProcedural).
+void expectDeferredEqualsCut(const std::string& toml, size_t deferredFiles,
+                             bool wholeProcedural = false) {
   const Scene whole = loadScene(toml, true);
-  const TomlOutline outline = loadSceneDeferred(toml, true);
+  const TomlOutline outline = loadSceneDeferred(toml, true, !wholeProcedural);
   size_t deferred = 0;
   for (const Node& n : outline.scene.nodes) deferred += n.deferred.has_value();
   ASSERT_EQ(deferred, deferredFiles);
   expectSameOutline(outlineOf(outline.scene), outlineOf(whole));
   bool someSplit = false;
   forEveryShare(toml, [&](uint32_t regions, const WorkShare& share, Parts layout) {
-    const HeldShare read = holdShare(outline.scene, regions, share, layout, false, outline.read);
-    expectSameShare(read, holdShare(whole, regions, share, layout, false), layout);
+    const HeldShare read =
+        holdShare(outline.scene, regions, share, layout, wholeProcedural, outline.read);
+    expectSameShare(read, holdShare(whole, regions, share, layout, wholeProcedural), layout);
     someSplit = someSplit || read.units > whole.nodes.size();
   });
   EXPECT_TRUE(someSplit) << "a file's mesh was cut into its triangles";
 }
 
 // Files placed once and cut into triangles, one far away and recentred with the scene's colour,
-// one placed twice (a whole unit, read whole by the rank holding it), a landscape generated per
-// region, next to a generator loaded whole; a file of over 2^16 triangles (read in two chunks) as a
+// one placed twice (a whole unit, read whole by the rank holding it), a landscape, a terrain and
+// a displaced sphere generated per region (loaded whole for sqrt5), next to a generator loaded
+// whole; a file of over 2^16 triangles (read in two chunks) as a
 // scene's main mesh (through its recentred node), and cut beside another.
 TEST(StreamedShare, ATomlScenesMeshFilesReadPerRegionGiveTheShareCutFromTheLoadedScene) {
   const test::ScratchDir dir;
   test::polygonMesh(test::PlyEncoding::kLittleEndian, 0.0, 12).write(dir.path() / "cut.ply");
   test::polygonMesh(test::PlyEncoding::kAscii, 1e7, 6).write(dir.path() / "far.ply");
   dir.write("twice.off", test::offGrid("COFF", 0.0));
-  expectDeferredEqualsCut(dir.write("scene.toml", R"(root = "world"
+  const std::string toml = dir.write("scene.toml", R"(root = "world"
 [[meshes]]
 name = "cut"
 file = "cut.ply"
@@ -162,14 +166,22 @@ spec = "sphereflake?depth=1"
 [[generators]]
 name = "land"
 spec = "builtin:landscape?objects=12"
+[[generators]]
+name = "hills"
+spec = "terrain?tess=12&extent=20"
+[[generators]]
+name = "ball"
+spec = "displaced?shape=sphere&tess=10"
 [[nodes]]
 name = "world"
 instances = [{ node = "cut" }, { node = "far", translate = [-1e7, 0, 5] },
              { node = "twice", translate = [0, 0, 30] }, { node = "twice", translate = [0, 9, 30] },
-             { node = "flake", translate = [40, 0, 0] }, { node = "land", translate = [0, -80, 0] }]
+             { node = "flake", translate = [40, 0, 0] }, { node = "land", translate = [0, -80, 0] },
+             { node = "hills", translate = [0, 60, 0] }, { node = "ball", translate = [9, 9, 9] }]
 )")
-                              .string(),
-                          4);
+                               .string();
+  expectDeferredEqualsCut(toml, 6);
+  expectDeferredEqualsCut(toml, 4, true);
   test::polygonMesh(test::PlyEncoding::kBigEndian, 1e7, 220).write(dir.path() / "large.ply");
   expectDeferredEqualsCut(dir.write("one.toml", R"(root = "world"
 [[meshes]]
@@ -211,7 +223,7 @@ name = "world"
 instances = [{ node = "twice" }, { node = "twice", translate = [0, 9, 30] }]
 )")
                                .string();
-  const TomlOutline outline = loadSceneDeferred(toml, true);
+  const TomlOutline outline = loadSceneDeferred(toml, true, true);
   uint64_t reads = 0;
   const DeferredReader counted = [&](uint32_t node, const std::function<void(const Mesh&)>& out) {
     ++reads;

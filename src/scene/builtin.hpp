@@ -43,6 +43,7 @@ struct BuiltinChunks {
   std::function<LoadStats(const std::function<void(const Mesh&)>&)> generate;
   std::optional<CameraSpec> camera;  // the loaded scene's
   bool procedural = false;           // a procedural object's tessellation (terrain, displaced)
+  std::string name;                  // the loaded scene's node
 };
 // landscape, terrain and displaced stream: nullopt for every other generator. Throws InputError
 // for a bad spec.

@@ -124,7 +124,8 @@ Generated generateLandscape(Scene& scene, BuiltinParams& params) {
 
 BuiltinChunks landscapeChunks(BuiltinParams& params) {
   const Landscape shape(params);
-  return {shape.triangles(), [spec = params.spec()](const std::function<void(const Mesh&)>& chunk) {
+  return {shape.triangles(),
+          [spec = params.spec()](const std::function<void(const Mesh&)>& chunk) {
             BuiltinParams again(spec);
             Landscape land(again);
             Mesh mesh;
@@ -141,7 +142,7 @@ BuiltinChunks landscapeChunks(BuiltinParams& params) {
             if (!mesh.empty()) chunk(mesh);
             return stats;
           },
-          landscapeCamera(shape.terrain)};
+          landscapeCamera(shape.terrain), false, "landscape"};
 }
 
 }  // namespace lzb

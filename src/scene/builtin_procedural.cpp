@@ -109,6 +109,7 @@ std::optional<BuiltinChunks> proceduralChunks(BuiltinParams& params) {
   chunks.triangles = 2 * uint64_t(b.spec.tess) * uint64_t(b.spec.tess);
   chunks.camera = b.camera;
   chunks.procedural = true;
+  chunks.name = b.name;
   chunks.generate = [spec = b.spec, where = "builtin:" + params.spec()](
                         const std::function<void(const Mesh&)>& chunk) {
     LoadStats stats;

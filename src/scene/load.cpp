@@ -47,9 +47,9 @@ Scene loadScene(const std::string& spec, bool quiet) {
   return scene;
 }
 
-TomlOutline loadSceneDeferred(const std::string& spec, bool quiet) {
+TomlOutline loadSceneDeferred(const std::string& spec, bool quiet, bool deferProcedural) {
   if (spec.rfind("builtin:", 0) == 0 || !endsWithToml(spec)) return {loadScene(spec, quiet), {}};
-  TomlOutline outline = loadTomlOutline(spec);
+  TomlOutline outline = loadTomlOutline(spec, deferProcedural);
   require(outline.scene.expandedTriangles() > 0, spec, "the scene has no triangles");
   if (!quiet) warnDropped(spec, outline.scene.stats);
   releaseSlack(outline.scene);

@@ -14,9 +14,10 @@ namespace lzb {
 // Throws InputError naming the file, line, generator or key on bad input. Unless quiet, prints a
 // warning to stderr when triangles were dropped (they are counted in Scene::stats either way).
 Scene loadScene(const std::string& spec, bool quiet = false);
-// loadScene's scene with a TOML scene's streamed mesh files left unread (loadTomlOutline: their
-// nodes deferred, `read` reads them); any other spec loaded whole (`read` unset).
-TomlOutline loadSceneDeferred(const std::string& spec, bool quiet = false);
+// loadScene's scene with a TOML scene's streamed mesh files and generators left unread
+// (loadTomlOutline: their nodes deferred, `read` reads them); any other spec loaded whole (`read`
+// unset).
+TomlOutline loadSceneDeferred(const std::string& spec, bool quiet, bool deferProcedural);
 // Fits the meshes' arrays to their size and hands the heap's free memory back to the system.
 void releaseSlack(Scene& scene);
 // The one warning line for triangles a loader dropped (none when it dropped none).

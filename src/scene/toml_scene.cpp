@@ -66,9 +66,15 @@ using DeferredChunks = std::function<void(const std::function<void(const Mesh&)>
 class TomlSceneReader {
  public:
   // deferred: where streamed files and generators go, their nodes deferred (nullptr: every one
-  // loaded).
-  TomlSceneReader(const std::filesystem::path& path, std::map<uint32_t, DeferredChunks>* deferred)
-      : path_(path), file_(path.string()), dir_(path.parent_path()), deferred_(deferred) {}
+  // loaded); deferProcedural: terrain and displaced too (their nodes then lose the definition
+  // that sqrt5 samples).
+  TomlSceneReader(const std::filesystem::path& path, std::map<uint32_t, DeferredChunks>* deferred,
+                  bool deferProcedural = false)
+      : path_(path),
+        file_(path.string()),
+        dir_(path.parent_path()),
+        deferred_(deferred),
+        deferProcedural_(deferProcedural) {}
 
   Scene read();
 
@@ -124,6 +130,7 @@ class TomlSceneReader {
   Scene scene_;
   std::map<std::string, Entry, std::less<>> names_;
   std::map<uint32_t, DeferredChunks>* deferred_;
+  bool deferProcedural_;
 };
 
 void TomlSceneReader::allowOnly(const toml::table& t, std::initializer_list<std::string_view> keys,
@@ -291,7 +298,7 @@ std::optional<uint32_t> TomlSceneReader::addDeferredFile(const std::filesystem::
 std::optional<Generated> TomlSceneReader::addDeferredGenerator(const std::string& spec) {
   if (!deferred_) return std::nullopt;
   std::optional<BuiltinChunks> chunks = builtinChunks(spec);
-  if (!chunks || chunks->procedural) return std::nullopt;
+  if (!chunks || (chunks->procedural && !deferProcedural_)) return std::nullopt;
   // One pass for the count and box, as opening a mesh file reads it once.
   DeferredMesh mesh;
   scene_.stats.merge(chunks->generate([&](const Mesh& chunk) {
@@ -299,7 +306,7 @@ std::optional<Generated> TomlSceneReader::addDeferredGenerator(const std::string
     for (const glm::vec3& p : chunk.positions) mesh.bounds.extend(glm::dvec3(p));
   }));
   Generated g;
-  g.root = scene_.addNode(spec.substr(0, spec.find('?')));
+  g.root = scene_.addNode(chunks->name);
   g.camera = chunks->camera;
   scene_.nodes[g.root].deferred = mesh;
   deferred_->emplace(g.root, [generate = std::move(chunks->generate)](
@@ -512,12 +519,12 @@ Scene loadTomlScene(const std::filesystem::path& path) {
   return TomlSceneReader(path, nullptr).read();
 }
 
-TomlOutline loadTomlOutline(const std::filesystem::path& path) {
+TomlOutline loadTomlOutline(const std::filesystem::path& path, bool deferProcedural) {
   std::error_code ec;
   require(std::filesystem::is_regular_file(path, ec), path.string(), "file not found");
   auto deferred = std::make_shared<std::map<uint32_t, DeferredChunks>>();
   TomlOutline out;
-  out.scene = TomlSceneReader(path, deferred.get()).read();
+  out.scene = TomlSceneReader(path, deferred.get(), deferProcedural).read();
   out.read = [deferred](uint32_t node, const std::function<void(const Mesh&)>& to) {
     deferred->at(node)(to);
   };

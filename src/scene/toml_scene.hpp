@@ -15,14 +15,15 @@ Scene loadTomlScene(const std::filesystem::path& path);
 
 // The scene loadTomlScene makes, with the triangles of its streamed mesh files ([[meshes]] in a
 // format MeshStream reads, src/scene/mesh_stream.hpp) and of its generators that stream as one
-// mesh (landscape) not read: their nodes are deferred (their count, and their bounds from one
-// pass) and `read` hands out their triangles, the loaded scene's in its ID order, as often as
-// asked. Other files and generators are loaded. For a rank's share under --distribute data
-// (src/cli/distribute.hpp).
+// mesh (landscape; terrain and displaced too when deferProcedural, for a method that does not
+// sample their definitions) not read: their nodes are deferred (their count, and their bounds
+// from one pass) and `read` hands out their triangles, the loaded scene's in its ID order, as
+// often as asked. Other files and generators are loaded. For a rank's share under --distribute
+// data (src/cli/distribute.hpp).
 struct TomlOutline {
   Scene scene;
   DeferredReader read;
 };
-TomlOutline loadTomlOutline(const std::filesystem::path& path);
+TomlOutline loadTomlOutline(const std::filesystem::path& path, bool deferProcedural);
 
 }  // namespace lzb
