@@ -1,6 +1,7 @@
 #include "raycast/exact/embree_level.hpp"
 
 #include <cmath>
+#include <cstring>
 
 namespace lzb::embree {
 
@@ -25,7 +26,11 @@ DoubleRay toChild(const UserChild& c, const DoubleRay& r) {
 // After a hit at t, the ray goes on to the next float above t: Embree's packet traversal culls a
 // box whose entry is not below tfar, which would drop a tie in another leaf or instance.
 float tfarAfterHit(float t) {
-  return std::nextafter(t, INFINITY);
+  uint32_t bits;  // t >= 0 and finite: the next float is the next bit pattern (no libm call)
+  std::memcpy(&bits, &t, sizeof bits);
+  ++bits;
+  std::memcpy(&t, &bits, sizeof t);
+  return t;
 }
 
 // The context filter on a Level's own triangles: keeps a candidate only when it comes before

@@ -19,10 +19,12 @@
 // Scene::childOffset plus the ID found below.
 //
 // Ties: every query keeps the least (t, expanded ID), as the depth composite's key does, so a
-// ray that meets two triangles at the same t (a shared edge, a coplanar overlap) names the same
-// one whatever the BVH, its traversal order or the split of the scene across ranks. A context
-// filter orders the node's own triangles (Embree presents every candidate at t <= tfar to it,
-// also the others of the same leaf); the instance callback orders what comes from below.
+// ray that meets two triangles at the same t (a shared edge, two faces crossing, a coplanar
+// overlap) names the same one whatever the BVH, its traversal order or the split of the scene
+// across ranks. A context filter orders the node's own triangles (Embree presents every
+// candidate at t <= tfar to it, also the others of the same leaf); the instance callback orders
+// what comes from below. Only barycentrics at an edge would not do: most ties measured on the
+// landscape lie where two faces cross, inside one of them.
 #include <cstdint>
 #include <vector>
 

@@ -1,8 +1,10 @@
 #include "raycast/exact/embree_scene.hpp"
 
-#include <random>
-
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <random>
 
 #include "tests/support/brute_force.hpp"
 #include "tests/support/cameras.hpp"
@@ -328,6 +330,106 @@ TEST(EmbreeScene, TiesAcrossInstancesGoToTheLeastId) {
     const std::vector<uint64_t> ids = idsOfRaysDown(EmbreeScene(scene, {}), packets);
     for (size_t i = 0; i < ids.size(); ++i) EXPECT_EQ(ids[i], quadTriangle(i, 0)) << "ray " << i;
   }
+}
+
+// Rays from z = 2 down to z = 0 through the points (x, y) / 32, |x|, |y| <= 60: grid vertices,
+// edge midpoints and cell centres of a grid of cell 1/16; dyadic, so exact in float, and oblique
+// (a ray with a zero direction component on a box face falls out of Embree's slab test). The
+// hits, one ray at a time or as packets.
+std::vector<glm::dvec2> gridPoints() {
+  std::vector<glm::dvec2> points;
+  for (int y = -60; y <= 60; ++y)
+    for (int x = -60; x <= 60; ++x) points.push_back(glm::dvec2(x, y) / 32.0);
+  return points;
+}
+
+std::vector<RayHit> raysDown(const EmbreeScene& embree, const std::vector<glm::dvec2>& points,
+                             bool packets) {
+  std::vector<Ray> rays;
+  const glm::dvec3 dir(1.0 / 64.0, -1.0 / 32.0, -1.0);
+  for (const glm::dvec2& p : points)
+    rays.push_back({glm::dvec3(p, 0.0) - 2.0 * dir, dir, 0.1, 10.0});
+  std::vector<RayHit> hits(rays.size());
+  if (packets)
+    embree.intersect(rays, hits);
+  else
+    for (size_t i = 0; i < rays.size(); ++i)
+      hits[i] = embree.intersect(rays[i].origin, rays[i].dir, rays[i].tnear, rays[i].tfar);
+  return hits;
+}
+
+// The least ID of the triangles (in z = 0) holding p, edges and corners included; kNoId if none.
+uint64_t leastHolding(const std::vector<WorldTriangle>& tris, const glm::dvec2& p) {
+  const auto side = [&](const glm::dvec3& a, const glm::dvec3& b) {
+    return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);  // exact: dyadic inputs
+  };
+  uint64_t least = kNoId;
+  for (const WorldTriangle& t : tris) {
+    const double e0 = side(t.a, t.b), e1 = side(t.b, t.c), e2 = side(t.c, t.a);
+    if ((e0 >= 0 && e1 >= 0 && e2 >= 0) || (e0 <= 0 && e1 <= 0 && e2 <= 0))
+      least = std::min(least, t.id);
+  }
+  return least;
+}
+
+// Every ray names the least ID of the triangles holding its point: at a shared edge or vertex
+// (equal t: every triangle lies in z = 0 with the same area, so the same rounding) the least of
+// them, as the depth composite would keep; Embree alone keeps whichever it met last.
+void expectLeastAtSharedEdges(const Scene& scene) {
+  const std::vector<WorldTriangle> tris = test::worldTriangles(scene);
+  const std::vector<glm::dvec2> points = gridPoints();
+  const EmbreeScene embree(scene, {});
+  for (bool packets : {false, true}) {
+    const std::vector<RayHit> hits = raysDown(embree, points, packets);
+    int shared = 0;
+    for (size_t i = 0; i < points.size(); ++i) {
+      const uint64_t least = leastHolding(tris, points[i]);
+      if (least == kNoId) continue;
+      EXPECT_EQ(hits[i].t, 2.0f) << i;
+      EXPECT_EQ(hits[i].id, least)
+          << "ray through (" << points[i].x << ", " << points[i].y << "), packets " << packets;
+      shared += (i % 2 == 0);
+    }
+    EXPECT_GT(shared, 1000);
+  }
+}
+
+// A grid of 32 x 32 cells of 1/16 (two triangles each, 2,048), in shuffled ID order so that
+// neighbours sit in different leaves: the rays through its vertices meet six triangles each.
+TEST(EmbreeScene, TiesAtSharedEdgesAndVerticesGoToTheLeastId) {
+  std::vector<std::array<glm::vec3, 3>> cells;
+  for (int j = -16; j < 16; ++j)
+    for (int i = -16; i < 16; ++i) {
+      const glm::vec3 a(i / 16.0f, j / 16.0f, 0), b((i + 1) / 16.0f, j / 16.0f, 0),
+          c((i + 1) / 16.0f, (j + 1) / 16.0f, 0), d(i / 16.0f, (j + 1) / 16.0f, 0);
+      cells.push_back({a, b, c});
+      cells.push_back({a, c, d});
+    }
+  std::shuffle(cells.begin(), cells.end(), std::mt19937_64(4));
+  Scene scene;
+  scene.addNode("grid");
+  for (const auto& t : cells) scene.nodes[0].mesh.add(t[0], t[1], t[2], test::grey(90));
+  scene.finalize();
+  expectLeastAtSharedEdges(scene);
+}
+
+// 256 instances of the quad [-1, 1]^2 shrunk to 1/4 on a side, tiling [-2, 2]^2 in shuffled
+// order: at the edges and corners they share, the least expanded ID, whichever instance Embree
+// meets last.
+TEST(EmbreeScene, TiesAtEdgesSharedByInstancesGoToTheLeastId) {
+  std::vector<glm::dvec3> centres;
+  for (int j = -8; j < 8; ++j)
+    for (int i = -8; i < 8; ++i) centres.push_back(glm::dvec3(2 * i + 1, 2 * j + 1, 0) / 8.0);
+  std::shuffle(centres.begin(), centres.end(), std::mt19937_64(6));
+  Scene scene;
+  scene.root = scene.addNode("root");
+  const uint32_t quad = scene.addNode("quad");
+  test::addQuad(scene.nodes[quad].mesh);
+  for (const glm::dvec3& c : centres)
+    scene.nodes[scene.root].instances.push_back(
+        {quad, glm::scale(glm::translate(glm::dmat4(1.0), c), glm::dvec3(0.125, 0.125, 1.0))});
+  scene.finalize();
+  expectLeastAtSharedEdges(scene);
 }
 
 TEST(EmbreeScene, EmptySceneMissesEverything) {
