@@ -264,6 +264,17 @@ TEST(EmbreeScene, RaysThroughASharedVertexDoNotLeak) {
   }
 }
 
+// The hits of `rays`, one at a time or as packets.
+std::vector<RayHit> castAll(const EmbreeScene& embree, const std::vector<Ray>& rays, bool packets) {
+  std::vector<RayHit> hits(rays.size());
+  if (packets)
+    embree.intersect(rays, hits);
+  else
+    for (size_t i = 0; i < rays.size(); ++i)
+      hits[i] = embree.intersect(rays[i].origin, rays[i].dir, rays[i].tnear, rays[i].tfar);
+  return hits;
+}
+
 // Rays down onto z = 0 over [-0.9, 0.9]^2 (dyadic origins: every copy of a triangle gives them
 // the same t), one at a time and as packets: the IDs found.
 constexpr int kSide = 31;
@@ -272,14 +283,8 @@ std::vector<uint64_t> idsOfRaysDown(const EmbreeScene& embree, bool packets) {
   for (int y = 0; y < kSide; ++y)
     for (int x = 0; x < kSide; ++x)
       rays.push_back({{(x - 15) / 16.0, (y - 15) / 16.0, 2.0}, {0.0, 0.0, -1.0}, 0.1, 10.0});
-  std::vector<RayHit> hits(rays.size());
-  if (packets)
-    embree.intersect(rays, hits);
-  else
-    for (size_t i = 0; i < rays.size(); ++i)
-      hits[i] = embree.intersect(rays[i].origin, rays[i].dir, rays[i].tnear, rays[i].tfar);
   std::vector<uint64_t> ids;
-  for (const RayHit& h : hits) {
+  for (const RayHit& h : castAll(embree, rays, packets)) {
     EXPECT_EQ(h.t, 2.0f);
     ids.push_back(h.id);
   }
@@ -349,13 +354,7 @@ std::vector<RayHit> raysDown(const EmbreeScene& embree, const std::vector<glm::d
   const glm::dvec3 dir(1.0 / 64.0, -1.0 / 32.0, -1.0);
   for (const glm::dvec2& p : points)
     rays.push_back({glm::dvec3(p, 0.0) - 2.0 * dir, dir, 0.1, 10.0});
-  std::vector<RayHit> hits(rays.size());
-  if (packets)
-    embree.intersect(rays, hits);
-  else
-    for (size_t i = 0; i < rays.size(); ++i)
-      hits[i] = embree.intersect(rays[i].origin, rays[i].dir, rays[i].tnear, rays[i].tfar);
-  return hits;
+  return castAll(embree, rays, packets);
 }
 
 // The least ID of the triangles (in z = 0) holding p, edges and corners included; kNoId if none.
