@@ -142,8 +142,8 @@ void expectDeferredEqualsCut(const std::string& toml, size_t deferredFiles,
 // Files placed once and cut into triangles, one far away and recentred with the scene's colour,
 // one placed twice (a whole unit, read whole by the rank holding it), a landscape, a terrain and
 // a displaced sphere generated per region (loaded whole for sqrt5), next to a generator loaded
-// whole; a file of over 2^16 triangles (read in two chunks) as a
-// scene's main mesh (through its recentred node), and cut beside another.
+// whole; a file of over 2^16 triangles (read in two chunks) as a scene's main mesh (through its
+// recentred node), and cut beside another.
 TEST(StreamedShare, ATomlScenesMeshFilesReadPerRegionGiveTheShareCutFromTheLoadedScene) {
   const test::ScratchDir dir;
   test::polygonMesh(test::PlyEncoding::kLittleEndian, 0.0, 12).write(dir.path() / "cut.ply");
