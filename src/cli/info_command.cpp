@@ -122,7 +122,7 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   const bool data = parseDistribution(a.distribute, "--distribute") == Distribution::kData;
   Stopwatch clock;
   // Under data, as the ranks read it: a streamed scene once for its centres, a TOML scene's
-  // streamed files and landscapes per file, never the whole scene held.
+  // streamed files and generators per file, never the whole scene held.
   if (const std::optional<ChunkedScene> chunked =
           data ? openSharedStream(a.scene, a.method, !talk) : std::nullopt) {
     SceneOutline outline;
@@ -138,7 +138,7 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
         a, g, outlineOf(read.scene),
         trianglesPerRank(read.scene, a.regions, partsFor(a.method), wholeProceduralFor(a.method),
                          a.ranks, read.read),
-        "its streamed files and landscapes read for their centres, never held", clock.seconds());
+        "its streamed files and generators read for their centres, never held", clock.seconds());
   const Scene scene = data ? std::move(read.scene) : loadScene(a.scene, !talk);
   const double loadSeconds = clock.lap();
 
