@@ -42,7 +42,7 @@ void keepLeastHit(const RTCFilterFunctionNArguments* args) {
     const unsigned r = RTCRayN_id(args->ray, args->N, i);
     const float t = RTCRayN_tfar(args->ray, args->N, i);
     const uint64_t id = RTCHitN_primID(args->hit, args->N, i);
-    if (!before(t, id, context->ts[r], context->ids[r])) {
+    if (!nearer(t, id, context->ts[r], context->ids[r])) {
       args->valid[i] = 0;
       continue;
     }
@@ -61,7 +61,7 @@ void acceptHit(const RTCIntersectFunctionNArguments* args, unsigned i, float t, 
   RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, n);
   RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, n);
   const unsigned r = RTCRayN_id(ray, n, i);
-  if (!before(t, offset + id, context->ts[r], context->ids[r])) return;
+  if (!nearer(t, offset + id, context->ts[r], context->ids[r])) return;
   context->ts[r] = t;
   context->ids[r] = offset + id;
   RTCRayN_tfar(ray, n, i) = tfarAfterHit(t);

@@ -25,11 +25,13 @@
 // candidate at t <= tfar to it, also the others of the same leaf); the instance callback orders
 // what comes from below. Only barycentrics at an edge would not do: most ties measured on the
 // landscape lie where two faces cross, inside one of them.
+#include <embree3/rtcore.h>
+
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <vector>
 
-#include <embree3/rtcore.h>
-#include <glm/glm.hpp>
+#include "src/core/depth_key.hpp"
 
 namespace lzb::embree {
 
@@ -70,11 +72,6 @@ struct IdContext {
 // Sets up `context` with its filter; the caller sets ids[] = kMiss and ts[] = each ray's tfar.
 void initContext(IdContext& context, const DoubleRay* rays, uint64_t* ids, float* ts,
                  RTCIntersectContextFlags flags);
-
-// Whether a hit at (t, id) comes before the one kept at (keptT, keptId).
-inline bool before(float t, uint64_t id, float keptT, uint64_t keptId) {
-  return t < keptT || (t == keptT && id < keptId);
-}
 
 // Creates the user geometry of level.userChildren (when there are any) and attaches it.
 void attachUserChildren(RTCDevice device, Level& level);

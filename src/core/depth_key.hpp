@@ -9,7 +9,8 @@
 //   wide:   (depth bits, 64-bit ID)      128 bits, any scene
 // and a per-pixel minimum of keys (an atomic minimum between threads, one pass after another,
 // MPI_MIN between ranks) gives one result whatever the order. Framebuffer::keepNearer, the MPI
-// reduction, the native z-buffer and the splatting core all use nearer() or these keys.
+// reduction, the native z-buffer, the splatting core and every Embree query (ties at equal t,
+// raycast/exact/embree_level.hpp) all use nearer() or these keys.
 #include <atomic>
 #include <bit>
 #include <cstdint>
