@@ -30,14 +30,7 @@ struct PixelReach {
   bool reaches(const glm::dvec3& eye, const glm::dvec3& dir, double near, double until) const {
     if (!drawn) return true;
     double t0 = near, t1 = until;
-    for (int k = 0; k < 3; ++k) {
-      const double inv = 1.0 / dir[k];  // +-inf along an axis the ray does not move on
-      double a = (box.lo[k] - eye[k]) * inv, b = (box.hi[k] - eye[k]) * inv;
-      if (a > b) std::swap(a, b);
-      if (!(a <= t1 && b >= t0)) return std::isnan(a) || std::isnan(b);  // NaN: keep the ray
-      t0 = std::max(t0, a), t1 = std::min(t1, b);
-    }
-    return true;
+    return RaySlabs(eye, dir).clip(box, t0, t1);
   }
 };
 

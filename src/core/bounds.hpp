@@ -1,8 +1,10 @@
 #pragma once
-// Axis-aligned boxes in double precision (world space may be far from the origin).
+// Axis-aligned boxes in double precision (world space may be far from the origin), and the
+// slab test of a ray against them (the octree walk's, the pixel cast's box bound).
 #include <algorithm>
-#include <limits>
+#include <cmath>
 #include <glm/glm.hpp>
+#include <limits>
 
 namespace lzb {
 
@@ -38,6 +40,37 @@ struct Bounds {
     if (empty()) return out;
     for (int i = 0; i < 8; ++i) out.extend(glm::dvec3(m * glm::dvec4(corner(i), 1.0)));
     return out;
+  }
+};
+
+// A ray set up for slab tests. Zero direction components test containment instead of dividing
+// (no 0 * inf NaN); subnormal ones, whose reciprocal overflows, divide instead of multiplying.
+// t is monotonic in the plane coordinate, so a child's interval always lies inside its parent's.
+struct RaySlabs {
+  glm::dvec3 o, d, inv{0.0};
+  bool zero[3], divide[3];
+  RaySlabs(const glm::dvec3& origin, const glm::dvec3& dir) : o(origin), d(dir) {
+    for (int k = 0; k < 3; ++k) {
+      zero[k] = d[k] == 0.0;
+      inv[k] = zero[k] ? 0.0 : 1.0 / d[k];
+      divide[k] = !zero[k] && !std::isfinite(inv[k]);
+    }
+  }
+  double at(double x, int k) const { return divide[k] ? (x - o[k]) / d[k] : (x - o[k]) * inv[k]; }
+  // Narrows [t0, t1] to the part inside the closed box; false when nothing is left.
+  bool clip(const Bounds& b, double& t0, double& t1) const {
+    for (int k = 0; k < 3; ++k) {
+      if (zero[k]) {
+        if (!(o[k] >= b.lo[k] && o[k] <= b.hi[k])) return false;
+        continue;
+      }
+      double enter = at(b.lo[k], k), exit = at(b.hi[k], k);
+      if (d[k] < 0.0) std::swap(enter, exit);
+      if (enter > t0) t0 = enter;
+      if (exit < t1) t1 = exit;
+      if (!(t0 <= t1)) return false;
+    }
+    return true;
   }
 };
 

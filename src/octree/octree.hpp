@@ -125,37 +125,6 @@ class Octree {
 
 namespace detail {
 
-// A ray set up for slab tests. Zero direction components test containment instead of dividing
-// (no 0 * inf NaN); subnormal ones, whose reciprocal overflows, divide instead of multiplying.
-// t is monotonic in the plane coordinate, so a child's interval always lies inside its parent's.
-struct RaySlabs {
-  glm::dvec3 o, d, inv{0.0};
-  bool zero[3], divide[3];
-  RaySlabs(const glm::dvec3& origin, const glm::dvec3& dir) : o(origin), d(dir) {
-    for (int k = 0; k < 3; ++k) {
-      zero[k] = d[k] == 0.0;
-      inv[k] = zero[k] ? 0.0 : 1.0 / d[k];
-      divide[k] = !zero[k] && !std::isfinite(inv[k]);
-    }
-  }
-  double at(double x, int k) const { return divide[k] ? (x - o[k]) / d[k] : (x - o[k]) * inv[k]; }
-  // Narrows [t0, t1] to the part inside the closed box; false when nothing is left.
-  bool clip(const Bounds& b, double& t0, double& t1) const {
-    for (int k = 0; k < 3; ++k) {
-      if (zero[k]) {
-        if (!(o[k] >= b.lo[k] && o[k] <= b.hi[k])) return false;
-        continue;
-      }
-      double enter = at(b.lo[k], k), exit = at(b.hi[k], k);
-      if (d[k] < 0.0) std::swap(enter, exit);
-      if (enter > t0) t0 = enter;
-      if (exit < t1) t1 = exit;
-      if (!(t0 <= t1)) return false;
-    }
-    return true;
-  }
-};
-
 struct RayItem {
   double tEnter, tExit;
   uint32_t node;
@@ -245,7 +214,7 @@ bool Octree::traverseRay(const glm::dvec3& origin, const glm::dvec3& dir, double
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
   };
   if (empty() || !finite(origin) || !finite(dir) || !(tMin <= tMax)) return true;
-  const detail::RaySlabs ray(origin, dir);
+  const RaySlabs ray(origin, dir);
   double t0 = tMin, t1 = tMax;
   if (!ray.clip(boxes_[0], t0, t1)) return true;
   // Best-first by entry t: a child never enters before its parent, so leaves pop in entry order
