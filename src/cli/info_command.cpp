@@ -79,6 +79,15 @@ nlohmann::json rankEstimates(const InfoArgs& a, const Scene& scene) {
   return rankEstimates(a, held, scene.uniqueTriangles());
 }
 
+// The text report's lines on dropped triangles and bounds, held or streamed.
+void printDroppedAndBounds(const SceneOutline& s) {
+  std::printf("dropped:    %llu degenerate, %llu non-finite\n",
+              (unsigned long long)s.stats.degenerate, (unsigned long long)s.stats.nonFinite);
+  const Bounds& b = s.bounds;
+  std::printf("bounds:     [%g, %g, %g] - [%g, %g, %g]\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y,
+              b.hi.z);
+}
+
 // A scene's figures and estimate from its outline and the triangles each rank would hold, the
 // scene never held whole (how: what the report's "streamed" says): no octrees, no scene model.
 int infoWithoutHolding(const InfoArgs& a, const mpi::Group& g, const SceneOutline& outline,
@@ -93,16 +102,11 @@ int infoWithoutHolding(const InfoArgs& a, const mpi::Group& g, const SceneOutlin
     std::printf("%s\n", info.dump(2).c_str());
     return 0;
   }
-  const Bounds& b = outline.bounds;
   std::printf("scene:      %s (%s; no octrees)\n", outline.source.c_str(), how.c_str());
   std::printf("triangles:  %llu unique, %llu expanded\n",
               (unsigned long long)outline.uniqueTriangles,
               (unsigned long long)outline.expandedTriangles);
-  std::printf("dropped:    %llu degenerate, %llu non-finite\n",
-              (unsigned long long)outline.stats.degenerate,
-              (unsigned long long)outline.stats.nonFinite);
-  std::printf("bounds:     [%g, %g, %g] - [%g, %g, %g]\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y,
-              b.hi.z);
+  printDroppedAndBounds(outline);
   std::printf("memory:     peak resident %.1f MB\n", double(peakMemoryBytes()) / 1e6);
   printEstimate(info["estimate"]);
   return 0;
@@ -162,7 +166,8 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   }
   const double octreeSeconds = clock.lap();
 
-  nlohmann::json info = sceneSummary(outlineOf(scene));
+  const SceneOutline outline = outlineOf(scene);
+  nlohmann::json info = sceneSummary(outline);
   info["instances"] = 0;
   for (const Node& n : scene.nodes) info["instances"] = info["instances"].get<uint64_t>() + n.instances.size();
   info["octrees"] = octrees;
@@ -180,15 +185,12 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
     std::printf("%s\n", info.dump(2).c_str());
     return 0;
   }
-  const auto& b = scene.bounds();
   std::printf("scene:      %s\n", scene.source.c_str());
   std::printf("triangles:  %llu unique, %llu expanded (%llu nodes, %llu instances)\n",
               (unsigned long long)scene.uniqueTriangles(), (unsigned long long)scene.expandedTriangles(),
               (unsigned long long)scene.nodes.size(), (unsigned long long)info["instances"].get<uint64_t>());
   std::printf("nesting:    %d instance levels (at most %d)\n", scene.instanceDepth, kMaxInstanceDepth);
-  std::printf("dropped:    %llu degenerate, %llu non-finite\n", (unsigned long long)scene.stats.degenerate,
-              (unsigned long long)scene.stats.nonFinite);
-  std::printf("bounds:     [%g, %g, %g] - [%g, %g, %g]\n", b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z);
+  printDroppedAndBounds(outline);
   // A line per octree for the first few; the rest only in the JSON and the memory total.
   constexpr size_t kListed = 6;
   for (size_t i = 0; i < std::min(octrees.size(), kListed); ++i) {
