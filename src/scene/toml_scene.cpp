@@ -117,7 +117,8 @@ class TomlSceneReader {
                                           const std::optional<Rgba8>& color);
   void readGenerators(const toml::array& a);
   // The generator's node as addBuiltin makes it, deferred; nullopt when it does not stream as one
-  // mesh (a procedural object keeps its definition, other generators make graphs).
+  // mesh (other generators make graphs) or is a procedural object that keeps its definition
+  // (without deferProcedural).
   std::optional<Generated> addDeferredGenerator(const std::string& spec);
   void readNodes(const toml::array& a);
   glm::dmat4 readTransform(const toml::table& t, const std::string& field) const;
