@@ -7,6 +7,8 @@ namespace lzb::embree {
 
 namespace {
 
+constexpr uint32_t kTieSlackUlps = 16;
+
 void childBounds(const RTCBoundsFunctionArguments* args) {
   const auto* level = static_cast<const Level*>(args->geometryUserPtr);
   const UserChild& c = level->userChildren[args->primID];
@@ -23,12 +25,15 @@ DoubleRay toChild(const UserChild& c, const DoubleRay& r) {
   return {c.toChild * glm::dvec4(r.org, 1.0), c.toChild * glm::dvec4(r.dir, 0.0)};
 }
 
-// After a hit at t, the ray goes on to the next float above t: Embree's packet traversal culls a
-// box whose entry is not below tfar, which would drop a tie in another leaf or instance.
+// After a hit at t, the ray goes on a little past t: Embree's packet traversal culls a box whose
+// entry is not below tfar, and its triangle test drops a candidate beyond tfar, which would lose
+// a tie in another leaf or instance. Both t and the box entry come from approximate reciprocals
+// (rcp and a Newton step) that differ by an ulp or two, and by CPU (a hit exactly at 2 comes out
+// 1 ulp short on an AMD EPYC): 16 ulps covers them; the filter orders whatever they let through.
 float tfarAfterHit(float t) {
-  uint32_t bits;  // t >= 0 and finite: the next float is the next bit pattern (no libm call)
+  uint32_t bits;  // t >= 0 and finite: larger floats are larger bit patterns (no libm call)
   std::memcpy(&bits, &t, sizeof bits);
-  ++bits;
+  bits += kTieSlackUlps;
   std::memcpy(&t, &bits, sizeof t);
   return t;
 }
