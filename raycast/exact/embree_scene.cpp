@@ -1,6 +1,7 @@
 #include "raycast/exact/embree_scene.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <mutex>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "raycast/exact/embree_level.hpp"
+#include "src/core/renderer.hpp"
 #include "src/core/timer.hpp"
 
 namespace lzb {
@@ -56,12 +58,23 @@ struct EmbreeScene::Impl {
   const Level* root = nullptr;
   int packetWidth = 1;  // widest packet the CPU and this Embree build trace natively
   EmbreeBuildStats stats;
+  std::atomic<int64_t> heldBytes{0}, peakBytes{0};  // Embree's allocations (countMemory)
 
   Impl(const Scene& s, const EmbreeSceneOptions& o) : scene(s), options(o) {}
   ~Impl() {
     for (auto& level : levels)
       if (level) rtcReleaseScene(level->scene);
     if (device) rtcReleaseDevice(device);
+  }
+
+  // Embree's memory monitor: bytes > 0 before an allocation, < 0 after a release.
+  static bool countMemory(void* user, ssize_t bytes, bool) {
+    auto* impl = static_cast<Impl*>(user);
+    const int64_t now = impl->heldBytes.fetch_add(bytes, std::memory_order_relaxed) + bytes;
+    int64_t peak = impl->peakBytes.load(std::memory_order_relaxed);
+    while (now > peak && !impl->peakBytes.compare_exchange_weak(peak, now)) {
+    }
+    return true;
   }
 
   static void reportError(void* user, RTCError code, const char* message) {
@@ -143,7 +156,9 @@ struct EmbreeScene::Impl {
     if (levels[node]) return *levels[node];
     auto level = std::make_unique<Level>();
     level->scene = rtcNewScene(device);
-    rtcSetSceneFlags(level->scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    rtcSetSceneFlags(level->scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION |
+                                       (options.compactLeaves ? RTC_SCENE_FLAG_COMPACT
+                                                              : RTC_SCENE_FLAG_NONE));
     rtcSetSceneBuildQuality(level->scene, quality());
     const Node& n = scene.nodes[node];
     if (!n.mesh.empty()) attachMesh(*level, n.mesh, shift[node], n.name);
@@ -164,12 +179,14 @@ EmbreeScene::EmbreeScene(const Scene& scene, const EmbreeSceneOptions& options)
     : impl_(std::make_unique<Impl>(scene, options)) {
   Stopwatch clock;
   Impl& m = *impl_;
-  const std::string config = "threads=" + std::to_string(std::max(options.threads, 1));
+  const std::string config = options.deviceConfig + (options.deviceConfig.empty() ? "" : ",") +
+                             "threads=" + std::to_string(std::max(options.threads, 1));
   m.device = rtcNewDevice(config.c_str());
   if (!m.device)
     throw std::runtime_error("Embree: cannot create a device (error " +
                              std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
   rtcSetDeviceErrorFunction(m.device, Impl::reportError, &m);
+  rtcSetDeviceMemoryMonitorFunction(m.device, Impl::countMemory, &m);
   if (rtcGetDeviceProperty(m.device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED))
     m.packetWidth = 16;
   else if (rtcGetDeviceProperty(m.device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED))
@@ -183,6 +200,13 @@ EmbreeScene::EmbreeScene(const Scene& scene, const EmbreeSceneOptions& options)
   m.levels.resize(scene.nodes.size());
   m.root = &m.build(scene.root);
   m.stats.seconds = clock.seconds();
+  m.stats.bytes = uint64_t(std::max<int64_t>(m.heldBytes.load(), 0));
+  m.stats.peakBytes = uint64_t(std::max<int64_t>(m.peakBytes.load(), 0));
+}
+
+void addEmbreeMemory(const EmbreeBuildStats& build, FrameStats& stats) {
+  stats.addCount("embree_bytes", double(build.bytes));
+  stats.addCount("embree_peak_bytes", double(build.peakBytes));
 }
 
 EmbreeScene::~EmbreeScene() = default;

@@ -14,12 +14,15 @@
 #include <limits>
 #include <memory>
 #include <span>
+#include <string>
 
 #include <glm/glm.hpp>
 
 #include "src/core/scene.hpp"
 
 namespace lzb {
+
+struct FrameStats;
 
 struct Ray {
   glm::dvec3 origin{0.0};
@@ -35,8 +38,16 @@ struct RayHit {
 };
 
 struct EmbreeSceneOptions {
-  int threads = 1;          // Embree's build threads
-  bool highQuality = true;  // RTC_BUILD_QUALITY_HIGH (spatial splits) for the node BVHs
+  int threads = 1;  // Embree's build threads
+  // RTC_BUILD_QUALITY_HIGH for the node BVHs. Under RTC_SCENE_FLAG_ROBUST, Embree 3.13 builds
+  // the same BVH8<triangle4v> by its SAH builder at HIGH and MEDIUM (its verbose log; no spatial
+  // splits), so this changes nothing but the build's own bookkeeping.
+  bool highQuality = true;
+  // For the leaf-layout benchmark (runs/memory/leaves.py), off and empty for every method:
+  // RTC_SCENE_FLAG_COMPACT (leaves that index the vertices, still robust), and extra Embree
+  // device configuration ("key=value,...", e.g. "tri_accel=bvh8.triangle4i").
+  bool compactLeaves = false;
+  std::string deviceConfig;
 };
 
 struct EmbreeBuildStats {
@@ -45,7 +56,16 @@ struct EmbreeBuildStats {
   uint64_t triangles = 0;         // triangles given to Embree (each unique triangle once)
   uint64_t instances = 0;         // lzb instances, each one user-geometry primitive
   uint64_t skippedInstances = 0;  // singular or non-finite transforms (nothing to hit)
+  // What Embree allocated (its memory monitor: BVHs, leaves, the vertex copies; not the shared
+  // index buffers): held after the build, and at most during it (the build's primitive
+  // references on top of the growing BVH).
+  uint64_t bytes = 0;
+  uint64_t peakBytes = 0;
 };
+
+// The build's set-up figures of a method that holds an EmbreeScene: Embree's held and peak bytes
+// (counts: per rank in the report, summed over a rank's regions).
+void addEmbreeMemory(const EmbreeBuildStats& build, FrameStats& stats);
 
 class EmbreeScene {
  public:

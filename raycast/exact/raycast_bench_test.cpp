@@ -1,14 +1,21 @@
 // Throughput measurements, run only with LZB_BENCH=1 (they take seconds and print figures):
 //   LZB_BENCH=1 build/raycast/raycast_test --gtest_filter='RaycastBench.*'
+// RaycastBench.LeafLayouts reads LZB_BENCH_SCENE (a scene spec) and LZB_BENCH_LAYOUTS (Embree
+// device configurations separated by ';', "default" for none, "compact" for the scene flag);
+// runs/memory/leaves.py sets them.
 #include <cstdio>
 #include <cstdlib>
 #include <algorithm>
 #include <random>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "raycast/exact/raycast_renderer.hpp"
 #include "src/core/system.hpp"
+#include "src/scene/load.hpp"
 #include "tests/support/scenes.hpp"
 
 namespace lzb {
@@ -126,6 +133,63 @@ TEST(RaycastBench, InstancedChessboard1e12) {
     EXPECT_GT(t.covered, 640u * 480u / 2);
   }
   std::printf("peak memory %.0f MiB\n", double(peakMemoryBytes()) / (1 << 20));
+}
+
+// Embree's leaf layouts on one scene, built side by side and their frames interleaved: Embree's
+// bytes a triangle (held, and allocated at most while building), the median trace of a frame
+// along the default circle, the pixels (over its frames) whose ID or depth differ from the first
+// layout's, and the process's peak resident bytes (meaningful for one layout a process).
+TEST(RaycastBench, LeafLayouts) {
+  if (!benchEnabled()) GTEST_SKIP() << "set LZB_BENCH=1";
+  const char* spec = std::getenv("LZB_BENCH_SCENE");
+  const Scene scene = loadScene(spec && *spec ? spec : "builtin:landscape?objects=40000", true);
+  const char* chosen = std::getenv("LZB_BENCH_LAYOUTS");
+  std::vector<std::string> layouts;
+  std::stringstream list(chosen && *chosen ? chosen : "default;tri_accel=bvh8.triangle4i");
+  for (std::string item; std::getline(list, item, ';');) layouts.push_back(item);
+  RenderOptions options;
+  options.threads = 2;
+  std::vector<std::unique_ptr<RaycastRenderer>> renderers;
+  for (const std::string& config : layouts) {
+    RaycastTuning tuning;
+    tuning.embree.compactLeaves = config == "compact";
+    tuning.embree.deviceConfig = config == "default" || config == "compact" ? "" : config;
+    renderers.push_back(std::make_unique<RaycastRenderer>(scene, options, tuning));
+  }
+  constexpr int kFrames = 9;
+  const CameraSpec base = frameBounds(scene.bounds());
+  std::vector<std::vector<double>> trace(layouts.size());
+  std::vector<uint64_t> otherIds(layouts.size(), 0), otherDepths(layouts.size(), 0);
+  for (int f = 0; f < kFrames; ++f) {
+    const Camera cam(withClipPlanes(pathCamera(scene, base, f, kFrames), scene.bounds()), 640, 480);
+    Framebuffer first(cam.width(), cam.height());
+    for (size_t k = 0; k < layouts.size(); ++k) {
+      Framebuffer fb(cam.width(), cam.height());
+      FrameStats stats;
+      renderers[k]->render(cam, f, {}, fb, stats);
+      for (const auto& [name, s] : stats.stageSeconds)
+        if (name == "trace" && f > 0) trace[k].push_back(s);  // frame 0 pays the page faults
+      if (k == 0) first = fb;
+      for (size_t i = 0; i < fb.id.size(); ++i) {
+        otherIds[k] += fb.id[i] != first.id[i];
+        otherDepths[k] += fb.depth[i] != first.depth[i];
+      }
+    }
+  }
+  const double tris = double(scene.uniqueTriangles());
+  std::printf("layout,unique_triangles,embree_bytes_per_triangle,embree_peak_allocated_per_triangle,"
+              "build_s,median_trace_ms,pixels_other_id,pixels_other_depth,"
+              "process_peak_bytes_per_triangle\n");
+  for (size_t k = 0; k < layouts.size(); ++k) {
+    const EmbreeBuildStats& b = renderers[k]->embreeScene().buildStats();
+    std::sort(trace[k].begin(), trace[k].end());
+    std::printf("%s,%.0f,%.1f,%.1f,%.2f,%.2f,%llu,%llu,%.1f\n", layouts[k].c_str(), tris,
+                double(b.bytes) / tris, double(b.peakBytes) / tris, b.seconds,
+                1e3 * trace[k][trace[k].size() / 2], (unsigned long long)otherIds[k],
+                (unsigned long long)otherDepths[k], double(peakMemoryBytes()) / tris);
+    EXPECT_GT(b.bytes, 0u);
+    EXPECT_GE(b.peakBytes, b.bytes);
+  }
 }
 
 }  // namespace

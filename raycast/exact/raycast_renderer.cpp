@@ -31,6 +31,7 @@ FrameStats RaycastRenderer::setupStats() const {
   s.setShared("embree_scenes", double(b.levels));
   s.setShared("embree_instances", double(b.instances));
   s.setShared("skipped_instances", double(b.skippedInstances));
+  addEmbreeMemory(b, s);
   return s;
 }
 

@@ -107,6 +107,7 @@ FrameStats LzbRenderer::setupStats() const {
   s.setShared("octrees", double(accel_->stats().octrees));
   s.setShared("octree_nodes", double(accel_->stats().octreeNodes));
   s.setShared("static_occluders", double(accel_->stats().occluders));
+  addEmbreeMemory(embree_->buildStats(), s);
   return s;
 }
 
