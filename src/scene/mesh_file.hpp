@@ -1,5 +1,7 @@
 #pragma once
-// Mesh files through assimp (OBJ, PLY, OFF, STL, glTF/GLB and the rest assimp reads).
+// Mesh files through assimp (OBJ, PLY, OFF, STL, glTF/GLB and the rest assimp reads), or, where
+// the streaming reader gives the same triangles (src/scene/mesh_stream.hpp: binary PLY, OFF, most
+// OBJ), read by it chunk by chunk into the model, without assimp's copy of the file beside it.
 #include <cstdint>
 #include <filesystem>
 #include <optional>
