@@ -1,5 +1,5 @@
 // A PLY file streamed (src/scene/ply_stream.hpp through MeshChunkStream) gives the triangles the
-// loaded scene streams (SceneStream of loadScene), bit for bit: polygons split, vertex colours
+// scene loaded by assimp streams (SceneStream), bit for bit: polygons split, vertex colours
 // averaged, degenerate and non-finite faces dropped, far geometry recentred, in either byte order
 // and in ASCII; malformed files are refused naming the file, and files the loader reads otherwise
 // are left to it.
@@ -17,8 +17,8 @@
 
 #include "src/core/error.hpp"
 #include "src/sampletree/triangle_stream.hpp"
-#include "src/scene/load.hpp"
 #include "src/scene/ply_stream.hpp"
+#include "tests/support/assimp_scene.hpp"
 #include "tests/support/ply_files.hpp"
 
 namespace lzb::sampletree {
@@ -46,7 +46,7 @@ void expectStreamedEqualsLoaded(const fs::path& file) {
   std::string why;
   const auto ply = PlyMeshStream::open(file, why);
   ASSERT_TRUE(ply) << why;
-  const Scene scene = loadScene(file.string(), true);
+  const Scene scene = test::loadedByAssimp(file);
   SceneOutline base;
   base.source = file.string();
   const MeshChunkStream streamed(base, ply->triangles(),

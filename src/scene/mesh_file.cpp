@@ -260,8 +260,10 @@ std::optional<uint32_t> addStreamedFile(Scene& scene, const std::filesystem::pat
 }  // namespace
 
 uint32_t addMeshFile(Scene& scene, const std::filesystem::path& path,
-                     const std::optional<Rgba8>& colorOverride) {
-  if (const std::optional<uint32_t> file = addStreamedFile(scene, path, colorOverride)) return *file;
+                     const std::optional<Rgba8>& colorOverride, MeshReader reader) {
+  if (reader == MeshReader::kStreamWhereExact)
+    if (const std::optional<uint32_t> file = addStreamedFile(scene, path, colorOverride))
+      return *file;
   return FileLoader(scene, path, colorOverride).load();
 }
 

@@ -22,7 +22,11 @@ constexpr Rgba8 kDefaultMeshColor = packRgba8(200, 200, 200);
 // diffuse colour, else kDefaultMeshColor. Dropped triangles are counted in scene.stats.
 // Throws InputError naming the file when it is missing, unreadable, malformed, truncated or has
 // no valid triangle.
+// reader: kAssimp reads every file through assimp (the reference the streaming readers' tests
+// compare with).
+enum class MeshReader { kStreamWhereExact, kAssimp };
 uint32_t addMeshFile(Scene& scene, const std::filesystem::path& path,
-                     const std::optional<Rgba8>& colorOverride = std::nullopt);
+                     const std::optional<Rgba8>& colorOverride = std::nullopt,
+                     MeshReader reader = MeshReader::kStreamWhereExact);
 
 }  // namespace lzb

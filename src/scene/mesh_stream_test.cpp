@@ -10,6 +10,7 @@
 
 #include "src/core/error.hpp"
 #include "src/scene/load.hpp"
+#include "tests/support/assimp_scene.hpp"
 #include "tests/support/files.hpp"
 #include "tests/support/meshes.hpp"
 #include "tests/support/text_meshes.hpp"
@@ -25,8 +26,10 @@ void expectStreamedEqualsLoaded(const std::filesystem::path& file) {
   std::string why;
   const std::unique_ptr<MeshStream> s = MeshStream::open(file, why);
   ASSERT_TRUE(s) << why;
-  const Scene scene = loadScene(file.string(), true);
+  const Scene scene = test::loadedByAssimp(file);
+  const Scene loaded = loadScene(file.string(), true);  // through the stream
   ASSERT_EQ(s->triangles(), scene.expandedTriangles());
+  ASSERT_EQ(loaded.expandedTriangles(), scene.expandedTriangles());
   EXPECT_EQ(s->stats().degenerate, scene.stats.degenerate);
   EXPECT_EQ(s->stats().nonFinite, scene.stats.nonFinite);
   uint64_t id = 0;
@@ -35,11 +38,18 @@ void expectStreamedEqualsLoaded(const std::filesystem::path& file) {
         for (size_t t = 0; t < m.size(); ++t, ++id) {
           const auto r = scene.resolve(id);
           ASSERT_TRUE(r);
-          const Mesh& loaded = scene.nodes[r->node].mesh;
-          for (int k = 0; k < 3; ++k)
-            ASSERT_EQ(m.vertex(t, k), loaded.vertex(r->triangle, k)) << "triangle " << id;
-          ASSERT_EQ(m.color(t), loaded.color(r->triangle)) << "triangle " << id;
+          const Mesh& assimp = scene.nodes[r->node].mesh;
+          const auto l = loaded.resolve(id);
+          ASSERT_TRUE(l);
+          const Mesh& viaStream = loaded.nodes[l->node].mesh;
+          for (int k = 0; k < 3; ++k) {
+            ASSERT_EQ(m.vertex(t, k), assimp.vertex(r->triangle, k)) << "triangle " << id;
+            ASSERT_EQ(viaStream.vertex(l->triangle, k), assimp.vertex(r->triangle, k));
+          }
+          ASSERT_EQ(m.color(t), assimp.color(r->triangle)) << "triangle " << id;
+          ASSERT_EQ(viaStream.color(l->triangle), assimp.color(r->triangle)) << "triangle " << id;
           ASSERT_EQ(s->placement(), r->transform);
+          ASSERT_EQ(l->transform, r->transform);
         }
       },
       50);
