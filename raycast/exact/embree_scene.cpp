@@ -156,9 +156,9 @@ struct EmbreeScene::Impl {
     if (levels[node]) return *levels[node];
     auto level = std::make_unique<Level>();
     level->scene = rtcNewScene(device);
-    rtcSetSceneFlags(level->scene, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION |
-                                       (options.compactLeaves ? RTC_SCENE_FLAG_COMPACT
-                                                              : RTC_SCENE_FLAG_NONE));
+    rtcSetSceneFlags(level->scene,
+                     RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION |
+                         (options.compactLeaves ? RTC_SCENE_FLAG_COMPACT : RTC_SCENE_FLAG_NONE));
     rtcSetSceneBuildQuality(level->scene, quality());
     const Node& n = scene.nodes[node];
     if (!n.mesh.empty()) attachMesh(*level, n.mesh, shift[node], n.name);

@@ -452,8 +452,8 @@ TEST(EmbreeScene, CompactLeavesHoldLessAndHitAlike) {
   std::vector<Ray> rays;
   for (int y = 0; y < cam.height(); ++y)
     for (int x = 0; x < cam.width(); ++x)
-      rays.push_back({cam.position(), cam.pixelDirection(x + 0.5, y + 0.5), cam.nearPlane(),
-                      cam.farPlane()});
+      rays.push_back(
+          {cam.position(), cam.pixelDirection(x + 0.5, y + 0.5), cam.nearPlane(), cam.farPlane()});
   for (bool packets : {false, true}) {
     const std::vector<RayHit> a = castAll(fast, rays, packets), b = castAll(small, rays, packets);
     int covered = 0;

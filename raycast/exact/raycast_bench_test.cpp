@@ -3,15 +3,15 @@
 // RaycastBench.LeafLayouts reads LZB_BENCH_SCENE (a scene spec) and LZB_BENCH_LAYOUTS (Embree
 // device configurations separated by ';', "default" for none, "compact" for the scene flag);
 // runs/memory/leaves.py sets them.
+#include <gtest/gtest.h>
+
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <algorithm>
 #include <random>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "raycast/exact/raycast_renderer.hpp"
 #include "src/core/system.hpp"
@@ -177,9 +177,10 @@ TEST(RaycastBench, LeafLayouts) {
     }
   }
   const double tris = double(scene.uniqueTriangles());
-  std::printf("layout,unique_triangles,embree_bytes_per_triangle,embree_peak_allocated_per_triangle,"
-              "build_s,median_trace_ms,pixels_other_id,pixels_other_depth,"
-              "process_peak_bytes_per_triangle\n");
+  std::printf(
+      "layout,unique_triangles,embree_bytes_per_triangle,embree_peak_allocated_per_triangle,"
+      "build_s,median_trace_ms,pixels_other_id,pixels_other_depth,"
+      "process_peak_bytes_per_triangle\n");
   for (size_t k = 0; k < layouts.size(); ++k) {
     const EmbreeBuildStats& b = renderers[k]->embreeScene().buildStats();
     std::sort(trace[k].begin(), trace[k].end());
