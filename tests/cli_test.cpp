@@ -1,11 +1,12 @@
 // The lzb program end to end: exact references agree, reports are complete, bad input is refused.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <string>
 #include <utility>
-
-#include <gtest/gtest.h>
 
 #include "src/image/frame_io.hpp"
 #include "tests/support/cli_runner.hpp"
@@ -143,6 +144,31 @@ TEST(Render, ReportHasParametersStagesCountsAndMemory) {
   // The camera circles: frames differ.
   EXPECT_NE(rep["frames"][0]["camera"]["position"], rep["frames"][1]["camera"]["position"]);
   for (int f = 0; f < 3; ++f) EXPECT_TRUE(fs::exists(out / ("frame_000" + std::to_string(f) + ".exr")));
+}
+
+// --bvh compact: Embree's leaves index the vertices; the same images (IDs, colours, depths on
+// this scene) with fewer bytes counted, for raycast and for the hybrid's Embree scene.
+TEST(Render, CompactBvhGivesTheSameImagesWithFewerBytes) {
+  for (const char* method : {"raycast", "hybrid"}) {
+    std::map<std::string, nlohmann::json> setup;
+    for (const char* bvh : {"fast", "compact"}) {
+      const fs::path out = freshDir(std::string("bvh_") + method + "_" + bvh);
+      const RunResult r =
+          runLzb("render builtin:sphereflake --frames 2 --width 96 --height 64 --method " +
+                 std::string(method) + " --bvh " + bvh + " --quiet --out " + out.string());
+      ASSERT_EQ(r.status, 0) << r.output;
+      const nlohmann::json rep = readJson(out / "report.json");
+      EXPECT_EQ(rep["parameters"]["bvh"], bvh);
+      setup[bvh] = rep["setup"]["counts"];
+    }
+    EXPECT_LT(setup["compact"]["embree_bytes"].get<double>(),
+              0.8 * setup["fast"]["embree_bytes"].get<double>())
+        << method;
+    for (const char* f : {"frame_0000.png", "frame_0001.png", "frame_0000.exr", "frame_0001.exr"})
+      EXPECT_EQ(fileBytes(workDir() / (std::string("bvh_") + method + "_fast") / f),
+                fileBytes(workDir() / (std::string("bvh_") + method + "_compact") / f))
+          << method << " " << f;
+  }
 }
 
 // The report says whose Embree scene the witness traces: the raycast reference's, else its own
@@ -517,6 +543,7 @@ INSTANTIATE_TEST_SUITE_P(
                 "--subsamples"},
         BadCase{"distribute_unknown", "render builtin:sphereflake --distribute halves",
                 "--distribute"},
+        BadCase{"bvh_unknown", "render builtin:sphereflake --bvh small", "--bvh"},
         BadCase{
             "distribute_data_store",
             "render builtin:sphereflake --method sampletree --tree /etc/passwd --distribute data",

@@ -10,8 +10,9 @@ namespace lzb {
 
 namespace {
 
-EmbreeSceneOptions withThreads(EmbreeSceneOptions embree, int threads) {
-  embree.threads = std::max(threads, 1);
+EmbreeSceneOptions withRenderOptions(EmbreeSceneOptions embree, const RenderOptions& options) {
+  embree.threads = std::max(options.threads, 1);
+  embree.compactLeaves = embree.compactLeaves || options.compactBvh;
   return embree;
 }
 
@@ -22,7 +23,7 @@ RaycastRenderer::RaycastRenderer(const Scene& scene, const RenderOptions& option
     : scene_(scene),
       options_(options),
       tuning_(tuning),
-      embree_(scene, withThreads(tuning.embree, options.threads)) {}
+      embree_(scene, withRenderOptions(tuning.embree, options)) {}
 
 FrameStats RaycastRenderer::setupStats() const {
   const EmbreeBuildStats& b = embree_.buildStats();

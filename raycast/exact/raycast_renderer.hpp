@@ -10,7 +10,7 @@ namespace lzb {
 
 struct RaycastTuning {
   bool packets = true;  // Embree ray packets of 4x4 pixels rather than rtcIntersect1 per pixel
-  EmbreeSceneOptions embree;  // threads is taken from RenderOptions
+  EmbreeSceneOptions embree;  // threads (and --bvh compact) are taken from RenderOptions
 };
 
 class RaycastRenderer : public Renderer {

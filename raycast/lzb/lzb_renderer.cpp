@@ -73,6 +73,7 @@ LzbRenderer::LzbRenderer(const Scene& scene, const RenderOptions& options, const
   // octrees are held, not on top of them.
   EmbreeSceneOptions eo;
   eo.threads = options_.threads;
+  eo.compactLeaves = options_.compactBvh;
   embree_ = std::make_unique<EmbreeScene>(scene, eo);
   accel_ = std::make_unique<LzbAccel>(scene, accelParams(lzb_));
   raster_ = std::make_unique<TriangleRasterizer>(scene);

@@ -8,10 +8,12 @@ are measured side by side (A/B).
 
 Usage: python3 runs/memory/run.py [--before=PATH/lzb] [--sizes=40000,400000,2000000]
        [--methods=zbuffer,raycast,lzb,hybrid,rzb] [--big-methods=raycast,hybrid] [--no-wait]
+       [--compact]  (each row also with --bvh compact, alternating; writes compact.csv instead)
        [--plot-only]  (redraws memory.png from memory.csv)
        (from the repository root, after scripts/build.sh; sizes are landscape objects: ~1.0 M,
        9.6 M and 48 M unique triangles; the largest size renders only --big-methods and no PLY)
-Writes runs/memory/memory.csv and memory.png (bytes per triangle per method and build).
+Writes runs/memory/memory.csv and memory.png (bytes per triangle per method and build), or with
+--compact runs/memory/compact.csv.
 Scratch files (the PLY exports) go to $LZB_SCRATCH or /tmp.
 """
 import os
@@ -21,7 +23,8 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402
 
-common.accept_args(flags=("--plot-only",), valued=("before", "sizes", "methods", "big-methods"))
+common.accept_args(flags=("--plot-only", "--compact"),
+                   valued=("before", "sizes", "methods", "big-methods"))
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SCRATCH = os.environ.get("LZB_SCRATCH", "/tmp")
@@ -31,13 +34,19 @@ METHODS = common.option("methods", ["zbuffer", "raycast", "lzb", "hybrid", "rzb"
 BIG_METHODS = common.option("big-methods", ["raycast", "hybrid"])
 
 
+COMPACT = "--compact" in sys.argv
+
+
 def builds():
-    """(label, binary) of every build compared: `this` is the tree's own, `before` --before's."""
-    return [("this", None)] + ([("before", BEFORE)] if BEFORE else [])
+    """(label, binary, extra arguments) of every build compared: `this` is the tree's own,
+    `this compact` it with --bvh compact, `before` --before's."""
+    return ([("this", None, [])] + ([("this compact", None, ["--bvh", "compact"])] if COMPACT else [])
+            + ([("before", BEFORE, [])] if BEFORE else []))
 
 
-def measure(scene, label, method, binary, rows, commands):
-    shown, rep = common.render(scene, ["--method", method, "--frames", "3"], threads=2, lzb=binary)
+def measure(scene, label, method, binary, extra, rows, commands):
+    shown, rep = common.render(scene, ["--method", method, "--frames", "3", *extra], threads=2,
+                               lzb=binary)
     commands.append(shown)
     tris = rep["scene"]["triangles_unique"]
     peak = rep["summary"]["peak_memory_bytes_root"]
@@ -66,16 +75,17 @@ def main():
             scenes.append((f"ply {objects}", export_ply(objects)))
         for label, scene in scenes:
             for method in BIG_METHODS if big else METHODS:
-                for name, binary in builds():
-                    row = measure(scene, label, method, binary, rows, commands)
+                for name, binary, extra in builds():
+                    row = measure(scene, label, method, binary, extra, rows, commands)
                     row["build"] = name
                     print(f"{label:>18} {method:>8} {name:>16}: {row['bytes_per_triangle']:7.1f} "
                           f"bytes a triangle, {row['peak_mib']} MiB, frame {row['median_frame_ms']} ms",
                           flush=True)
-    common.write_csv(os.path.join(HERE, "memory.csv"), rows,
+    common.write_csv(os.path.join(HERE, "compact.csv" if COMPACT else "memory.csv"), rows,
                      ["scene", "build", "method", "unique_triangles", "peak_mib",
                       "bytes_per_triangle", "median_frame_ms", "load_s"], commands)
-    plot(rows)
+    if not COMPACT:
+        plot(rows)
 
 
 def plot(rows):

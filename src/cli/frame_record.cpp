@@ -111,6 +111,8 @@ nlohmann::json imageKey(const nlohmann::json& head) {
   for (const char* field :
        {"seed", "quality", "frames", "reference", "subsamples", "fov", "near", "far"})
     key[field] = p.at(field);
+  key["bvh"] =
+      p.value("bvh", "fast");  // compact leaves compute t otherwise (records before it: fast)
   // Exact methods give the replicated image under data too; the others draw each region apart.
   if (!head.value("method_exact", false)) {
     key["distribution"] = head.at("distribution");

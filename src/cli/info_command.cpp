@@ -24,6 +24,8 @@ void addInfoOptions(CLI::App& c, InfoArgs& a) {
   c.add_option("--method", a.method, "the method whose peak memory per rank is estimated")
       ->capture_default_str();
   c.add_option("--ranks", a.ranks, "the ranks the estimate is for")->capture_default_str();
+  c.add_option("--bvh", a.bvh, "the estimate under render's --bvh: fast | compact")
+      ->capture_default_str();
   c.add_option("--distribute", a.distribute,
                "replicate: every rank holds the whole scene | data: each holds its regions' share")
       ->capture_default_str();
@@ -55,20 +57,19 @@ void printEstimate(const nlohmann::json& e) {
 nlohmann::json rankEstimates(const InfoArgs& a, const std::vector<uint64_t>& held,
                              uint64_t unique) {
   nlohmann::json ranks = nlohmann::json::array();
+  const bool compact = parseCompactBvh(a.bvh, "--bvh");
   for (int r = 0; r < a.ranks; ++r) {
     // An instanced share holds at most the scene's unique triangles.
     const uint64_t triangles = std::min(held[size_t(r)], unique);
     ranks.push_back({{"rank", r},
                      {"triangles", triangles},
-                     {"peak_bytes", methodPeakBytes(a.method, triangles)}});
+                     {"peak_bytes", methodPeakBytes(a.method, triangles, compact)}});
   }
   // The model's slope: the method's set-up and frames, scene model included.
-  const double perTriangle = double(methodPeakBytes(a.method, 1) - methodPeakBytes(a.method, 0));
-  return {{"method", a.method},
-          {"bytes_per_triangle", perTriangle},
-          {"distribute", a.distribute},
-          {"ranks", ranks},
-          {"usable_bytes", usableMemoryBytes()}};
+  const double perTriangle =
+      double(methodPeakBytes(a.method, 1, compact) - methodPeakBytes(a.method, 0, compact));
+  return {{"method", a.method},         {"bvh", a.bvh},   {"bytes_per_triangle", perTriangle},
+          {"distribute", a.distribute}, {"ranks", ranks}, {"usable_bytes", usableMemoryBytes()}};
 }
 
 nlohmann::json rankEstimates(const InfoArgs& a, const Scene& scene) {
@@ -118,6 +119,7 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   require(a.maxDepth >= 0 && a.maxDepth <= 32, "--max-depth", "must be in [0, 32]");
   require(a.leafSize >= 1, "--leaf-size", "must be >= 1");
   methodNamed(a.method, "--method");
+  parseCompactBvh(a.bvh, "--bvh");
   require(a.ranks >= 1 && a.ranks <= 1 << 20, "--ranks", "must be in [1, 2^20]");
   require(a.regions <= 65536, "--regions", "must be in [0, 65536]");
   require(parseDistribution(a.distribute, "--distribute") != Distribution::kAuto, "--distribute",

@@ -17,6 +17,7 @@ struct InfoArgs {
   int ranks = 1;
   std::string distribute = "replicate";
   uint32_t regions = 0;
+  std::string bvh = "fast";  // the render option the estimate assumes
   bool json = false;
   bool quiet = false;
 };

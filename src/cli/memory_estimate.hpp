@@ -9,8 +9,12 @@
 
 namespace lzb {
 
-// The peak of `method` holding `triangles` unique triangles, frame buffers excluded.
-uint64_t methodPeakBytes(const std::string& method, uint64_t triangles);
+// The peak of `method` holding `triangles` unique triangles, frame buffers excluded; with
+// compactBvh (`--bvh compact`), Embree's compact leaves for the methods that build its BVH.
+uint64_t methodPeakBytes(const std::string& method, uint64_t triangles, bool compactBvh = false);
+// `--bvh` (fast | compact): whether Embree's leaves are compact; InputError naming `where` for
+// anything else.
+bool parseCompactBvh(const std::string& value, const std::string& where);
 // Whether `method` has a measured model (every registered method must).
 bool hasMemoryModel(const std::string& method);
 

@@ -73,6 +73,12 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
                "zbuffer and raycast, one per 1,048,576 for the methods that render each region "
                "apart)")
       ->capture_default_str();
+  c.add_option("--bvh", a.bvh,
+               "Embree's BVH for raycast, lzb and the hybrid: fast (leaves hold each triangle's "
+               "vertices) | compact (leaves index the scene's vertices: about half of raycast's "
+               "memory, its rays 1.45-1.6x slower, the same triangle at every pixel; "
+               "runs/memory/README.md)")
+      ->capture_default_str();
   c.add_option("--threads,-t", a.threads, "threads per rank (0: the cores this rank owns)")
       ->capture_default_str();
   c.add_option("--seed", a.seed, "seed of all randomness (runs repeat exactly)")->capture_default_str();

@@ -74,6 +74,7 @@ void validateRenderArgs(const RenderArgs& a) {
   require(a.stallTimeout >= 0.0 && a.stallTimeout <= 1e9, "--stall-timeout",
           "must be in [0, 1e9] seconds");
   mpi::parseCompositeStrategy(a.composite, "--composite");
+  parseCompactBvh(a.bvh, "--bvh");
   if (parseDistribution(a.distribute, "--distribute") == Distribution::kData) {
     require(!methodNamed(a.method, "--method").rendersFromStore(), "--distribute data",
             "cuts the scene into regions, each with structures of its own: a store (--tree) holds "
@@ -116,8 +117,9 @@ namespace {
 // This rank's estimated peak holding `triangles` unique triangles: the method's structures and a
 // reference's.
 uint64_t rankPeakBytes(const RenderArgs& a, uint64_t triangles) {
-  return methodPeakBytes(a.method, triangles) +
-         (a.reference.empty() ? 0 : methodPeakBytes(a.reference, triangles));
+  const bool compact = parseCompactBvh(a.bvh, "--bvh");
+  return methodPeakBytes(a.method, triangles, compact) +
+         (a.reference.empty() ? 0 : methodPeakBytes(a.reference, triangles, compact));
 }
 
 std::string holding(uint64_t triangles, const RenderArgs& a) {
@@ -199,6 +201,7 @@ void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan, const WorkShare&
   plan.options.seed = a.seed;
   plan.options.quiet = !talk;
   plan.options.frameGroups = a.frameGroups;
+  plan.options.compactBvh = parseCompactBvh(a.bvh, "--bvh");
   useThreads(plan.options.threads);
 
   plan.width = a.width ? a.width : plan.scene.width.value_or(640);

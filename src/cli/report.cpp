@@ -45,6 +45,7 @@ Report::Report(const RenderArgs& a, const RenderOptions& options, const mpi::Gro
         {"composite", a.composite},
         {"frame_groups", a.frameGroups},
         {"distribute", a.distribute},
+        {"bvh", a.bvh},
         {"regions", a.regions},
         {"frame_range", a.frameRange},
         {"resume", a.resume},

@@ -42,6 +42,8 @@ struct RenderOptions {
   uint64_t seed = 1;   // randomness is keyed by (seed, frame, node, sample)
   bool quiet = false;
   int frameGroups = 1;  // --frame-groups: the ranks cut into groups that render frames apart
+  bool compactBvh =
+      false;  // --bvh compact: Embree's leaves index the vertices (about half the memory)
 };
 
 // Measurements a method reports per frame (and once for its set-up): stage times in order, the
