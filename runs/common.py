@@ -105,6 +105,16 @@ def render(scene, args, ranks=1, threads=1, quiet_wait=True, keep=None, lzb=None
     return shown, rep
 
 
+def landscape_ply(objects):
+    """builtin:landscape?objects=N exported as a binary PLY (each placed mesh's vertices once, as
+    a scanned mesh or heightfield file holds them) into $LZB_SCRATCH or /tmp, once."""
+    path = os.path.join(os.environ.get("LZB_SCRATCH", "/tmp"), f"lzb-memory-landscape-{objects}.ply")
+    if not os.path.exists(path):
+        subprocess.run([LZB, "export", f"builtin:landscape?objects={objects}", path, "--quiet",
+                        "--max-triangles", "1000000000"], check=True, env=ENV)
+    return path
+
+
 def median(xs):
     xs = list(xs)
     return statistics.median(xs) if xs else 0.0

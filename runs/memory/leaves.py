@@ -25,7 +25,6 @@ import common  # noqa: E402
 common.accept_args(valued=("objects",))
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SCRATCH = os.environ.get("LZB_SCRATCH", "/tmp")
 OBJECTS = int(common.option("objects", ["400000"])[0])
 BENCH = os.path.join(os.path.dirname(common.LZB), "raycast", "exact", "raycast_test")
 LAYOUTS = ["default", "compact", "tri_accel=bvh8.triangle4i", "tri_accel=bvh4.triangle4i"]
@@ -43,18 +42,10 @@ def bench(scene, layouts, commands):
     return list(csv.DictReader(io.StringIO("\n".join(lines))))
 
 
-def export_ply(objects):
-    path = os.path.join(SCRATCH, f"lzb-memory-landscape-{objects}.ply")
-    if not os.path.exists(path):
-        subprocess.run([common.LZB, "export", f"builtin:landscape?objects={objects}", path,
-                        "--quiet", "--max-triangles", "1000000000"], check=True, env=common.ENV)
-    return path
-
-
 def main():
     rows, commands = [], []
     scenes = [(f"landscape {OBJECTS}", f"builtin:landscape?objects={OBJECTS}"),
-              (f"ply {OBJECTS}", export_ply(OBJECTS))]
+              (f"ply {OBJECTS}", common.landscape_ply(OBJECTS))]
     for label, scene in scenes:
         together = bench(scene, LAYOUTS, commands)
         for row in together:

@@ -17,7 +17,6 @@ Writes runs/memory/memory.csv and memory.png (bytes per triangle per method and 
 Scratch files (the PLY exports) go to $LZB_SCRATCH or /tmp.
 """
 import os
-import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -27,7 +26,6 @@ common.accept_args(flags=("--plot-only", "--compact"),
                    valued=("before", "sizes", "methods", "big-methods"))
 
 HERE = os.path.dirname(os.path.abspath(__file__))
-SCRATCH = os.environ.get("LZB_SCRATCH", "/tmp")
 BEFORE = (common.option("before", [None]) or [None])[0]
 SIZES = [int(s) for s in common.option("sizes", ["40000", "400000", "2000000"])]
 METHODS = common.option("methods", ["zbuffer", "raycast", "lzb", "hybrid", "rzb"])
@@ -58,21 +56,13 @@ def measure(scene, label, method, binary, extra, rows, commands):
     return row
 
 
-def export_ply(objects):
-    path = os.path.join(SCRATCH, f"lzb-memory-landscape-{objects}.ply")
-    if not os.path.exists(path):
-        subprocess.run([common.LZB, "export", f"builtin:landscape?objects={objects}", path,
-                        "--quiet", "--max-triangles", "1000000000"], check=True, env=common.ENV)
-    return path
-
-
 def main():
     rows, commands = [], []
     for objects in SIZES:
         big = objects == max(SIZES) and len(SIZES) > 2
         scenes = [(f"landscape {objects}", f"builtin:landscape?objects={objects}")]
         if not big:
-            scenes.append((f"ply {objects}", export_ply(objects)))
+            scenes.append((f"ply {objects}", common.landscape_ply(objects)))
         for label, scene in scenes:
             for method in BIG_METHODS if big else METHODS:
                 for name, binary, extra in builds():

@@ -242,13 +242,7 @@ std::optional<uint32_t> addStreamedFile(Scene& scene, const std::filesystem::pat
     return std::nullopt;
   }
   if (!stream) return std::nullopt;
-  const std::string name = path.stem().string();
-  const uint32_t file = scene.addNode(name);
-  uint32_t holder = file;
-  if (stream->placement() != glm::dmat4(1.0)) {  // stored recentred, as the loader stores it
-    holder = scene.addNode(name + "/recentred");
-    scene.nodes[file].instances.push_back({holder, stream->placement()});
-  }
+  const auto [file, holder] = stream->addNodes(scene);
   Mesh& mesh = scene.nodes[holder].mesh;
   mesh.indices.reserve(3 * stream->triangles());
   stream->forEachChunk([&](const Mesh& chunk) { mesh.append(chunk); });

@@ -84,6 +84,15 @@ std::unique_ptr<MeshStream> MeshStream::open(const std::filesystem::path& path, 
   return nullptr;
 }
 
+std::pair<uint32_t, uint32_t> MeshStream::addNodes(Scene& scene) const {
+  const std::string name = path_.stem().string();
+  const uint32_t file = scene.addNode(name);
+  if (held_.placement == glm::dmat4(1.0)) return {file, file};
+  const uint32_t holder = scene.addNode(name + "/recentred");  // stored recentred, as loaded
+  scene.nodes[file].instances.push_back({holder, held_.placement});
+  return {file, holder};
+}
+
 void MeshStream::forEachChunk(const std::function<void(const Mesh&)>& out, size_t chunk) const {
   FaceChunks faces(held_, out, chunk);
   LoadStats pass;

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "src/core/bounds.hpp"
@@ -78,6 +79,10 @@ class MeshStream {
   // Hands out the triangles in file order (the loaded scene's ID order) in meshes of about
   // `chunk` triangles, in the stored frame. Throws InputError if the file changed under it.
   void forEachChunk(const std::function<void(const Mesh&)>& out, size_t chunk = 1 << 16) const;
+  // Adds the nodes the loader makes for this file to `scene`: the file's node, named after it,
+  // and the node its triangles go to (a "/recentred" child placed by placement() when that is
+  // not the identity, else the file's node). Returns {file, holder}.
+  std::pair<uint32_t, uint32_t> addNodes(Scene& scene) const;
 
  protected:
   explicit MeshStream(const std::filesystem::path& path);

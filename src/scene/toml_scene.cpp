@@ -276,13 +276,7 @@ std::optional<uint32_t> TomlSceneReader::addDeferredFile(const std::filesystem::
   std::string why;
   std::shared_ptr<const MeshStream> stream = MeshStream::open(file, why);
   if (!stream) return std::nullopt;
-  const std::string name = file.stem().string();
-  const uint32_t node = scene_.addNode(name);
-  uint32_t holder = node;
-  if (stream->placement() != glm::dmat4(1.0)) {  // stored recentred, as the loader stores it
-    holder = scene_.addNode(name + "/recentred");
-    scene_.nodes[node].instances.push_back({holder, stream->placement()});
-  }
+  const auto [node, holder] = stream->addNodes(scene_);
   scene_.nodes[holder].deferred = DeferredMesh{stream->triangles(), stream->storedBounds()};
   scene_.stats.merge(stream->stats());
   deferred_->emplace(holder, [stream, color](const std::function<void(const Mesh&)>& to) {
