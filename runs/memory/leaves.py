@@ -3,11 +3,12 @@
 leaves, each triangle's three vertices copied into its leaf, robust Pluecker test) against
 leaves that index the shared vertices (triangle4i): RTC_SCENE_FLAG_COMPACT (robust), and the
 device configurations tri_accel=bvh8.triangle4i and bvh4.triangle4i (which Embree 3.13 pairs
-with its fast Moeller test, not watertight), on the 10^7 landscape and its PLY export. Runs RaycastBench.LeafLayouts
-(raycast/exact/raycast_bench_test.cpp): once with every layout built side by side and their
-frames interleaved (Embree's own bytes from its memory monitor, the median trace of 8 frames at
-640x480 on 2 threads, the pixels whose ID or depth differ from the default's), then once a
-process per layout for the peak resident bytes of the scene plus that layout.
+with its fast Moeller test, not watertight), on the 10^7 landscape and its PLY export. Runs
+RaycastBench.LeafLayouts (raycast/exact/raycast_bench_test.cpp): once with every layout built
+side by side and their frames interleaved (Embree's own bytes from its memory monitor, the
+median trace of 8 frames at 640x480 on 2 threads, the pixels whose ID or depth differ from the
+default's), then once a process per layout for the peak resident bytes of the scene plus that
+layout.
 
 Usage: python3 runs/memory/leaves.py [--objects=400000] [--no-wait]
        (from the repository root, after scripts/build.sh)
