@@ -204,6 +204,12 @@ EmbreeScene::EmbreeScene(const Scene& scene, const EmbreeSceneOptions& options)
   m.stats.peakBytes = uint64_t(std::max<int64_t>(m.peakBytes.load(), 0));
 }
 
+EmbreeSceneOptions withRenderOptions(EmbreeSceneOptions base, const RenderOptions& options) {
+  base.threads = std::max(options.threads, 1);
+  base.compactLeaves = base.compactLeaves || options.compactBvh;
+  return base;
+}
+
 void addEmbreeMemory(const EmbreeBuildStats& build, FrameStats& stats) {
   stats.addCount("embree_bytes", double(build.bytes));
   stats.addCount("embree_peak_bytes", double(build.peakBytes));

@@ -23,6 +23,7 @@
 namespace lzb {
 
 struct FrameStats;
+struct RenderOptions;
 
 struct Ray {
   glm::dvec3 origin{0.0};
@@ -63,6 +64,10 @@ struct EmbreeBuildStats {
   uint64_t bytes = 0;
   uint64_t peakBytes = 0;
 };
+
+// `base` with what a render's options decide: the build threads, and compact leaves under
+// `--bvh compact` (every Embree scene a render builds: the methods' and the witness's).
+EmbreeSceneOptions withRenderOptions(EmbreeSceneOptions base, const RenderOptions& options);
 
 // The build's set-up figures of a method that holds an EmbreeScene: Embree's held and peak bytes
 // (counts: per rank in the report, summed over a rank's regions).

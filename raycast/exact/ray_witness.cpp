@@ -94,12 +94,6 @@ bool anyPointOf(const Polygon<glm::dvec2>& p, Hit hit) {
   return false;
 }
 
-EmbreeSceneOptions witnessEmbreeOptions(int threads) {
-  EmbreeSceneOptions o;  // the raycast reference's defaults
-  o.threads = std::max(threads, 1);
-  return o;
-}
-
 }  // namespace
 
 bool anyWitnessRay(const Scene& scene, const Camera& camera, int x, int y, uint64_t id,
@@ -118,14 +112,15 @@ bool RayWitness::visibleInPixel(int x, int y, uint64_t id) const {
   });
 }
 
-WitnessScene::WitnessScene(const Scene& scene, const Renderer* reference, int threads)
+WitnessScene::WitnessScene(const Scene& scene, const Renderer* reference,
+                           const RenderOptions& options)
     : scene_(scene) {
   // The raycast reference traces this very scene already: its BVHs serve the witness too.
   if (const auto* raycast = dynamic_cast<const RaycastRenderer*>(reference)) {
     embree_ = &raycast->embreeScene();
     return;
   }
-  owned_ = std::make_unique<EmbreeScene>(scene, witnessEmbreeOptions(threads));
+  owned_ = std::make_unique<EmbreeScene>(scene, withRenderOptions({}, options));
   embree_ = owned_.get();
 }
 

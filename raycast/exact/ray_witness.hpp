@@ -60,11 +60,11 @@ class RayWitness : public VisibilityWitness {
 };
 
 // The Embree scene the witness traces, made once per run: the raycast reference's own when the
-// reference is a RaycastRenderer (no second build), else one built here with the raycast
-// reference's options (high-quality BVHs, `threads` build threads).
+// reference is a RaycastRenderer (no second build), else one built here as the raycast reference
+// would build it under `options` (its threads and --bvh).
 class WitnessScene {
  public:
-  WitnessScene(const Scene& scene, const Renderer* reference, int threads);
+  WitnessScene(const Scene& scene, const Renderer* reference, const RenderOptions& options);
   RayWitness witness(const Camera& camera) const { return RayWitness(scene_, *embree_, camera); }
   const EmbreeScene& embree() const { return *embree_; }
   bool sharedWithReference() const { return !owned_; }

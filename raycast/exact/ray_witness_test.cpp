@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <random>
 
 #include "raycast/exact/raycast_renderer.hpp"
+#include "tests/support/scenes.hpp"
 
 namespace lzb {
 namespace {
@@ -152,16 +154,30 @@ TEST(WitnessScene, SharesTheRaycastReferencesEmbreeSceneElseBuildsItsOwn) {
   options.method = "raycast";
   options.threads = 1;
   const RaycastRenderer raycast(scene, options);
-  const WitnessScene shared(scene, &raycast, 1);
+  const WitnessScene shared(scene, &raycast, options);
   EXPECT_TRUE(shared.sharedWithReference());
   EXPECT_EQ(shared.buildSeconds(), 0.0);
-  const WitnessScene own(scene, nullptr, 1);
+  const WitnessScene own(scene, nullptr, options);
   EXPECT_FALSE(own.sharedWithReference());
   EXPECT_GT(own.buildSeconds(), 0.0);
   for (const WitnessScene* w : {&shared, &own}) {
     EXPECT_TRUE(w->witness(cam).visibleInPixel(5, 5, kSliver));
     EXPECT_FALSE(w->witness(cam).visibleInPixel(1, 1, kHidden));
   }
+}
+
+// Its own scene is built as the raycast reference would be under the render's options: compact
+// leaves under --bvh compact (fewer bytes on a soup large enough for leaves to dominate).
+TEST(WitnessScene, BuildsItsOwnSceneUnderTheRendersBvh) {
+  Scene scene;
+  scene.addNode("soup");
+  std::mt19937_64 rng(9);
+  test::addRandomTriangles(scene.nodes[0].mesh, 20000, 0.05, rng);
+  scene.finalize();
+  RenderOptions fast, compact;
+  compact.compactBvh = true;
+  const WitnessScene a(scene, nullptr, fast), b(scene, nullptr, compact);
+  EXPECT_LT(b.embree().buildStats().bytes, a.embree().buildStats().bytes * 3 / 4);
 }
 
 }  // namespace

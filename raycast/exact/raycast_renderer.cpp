@@ -8,16 +8,6 @@
 
 namespace lzb {
 
-namespace {
-
-EmbreeSceneOptions withRenderOptions(EmbreeSceneOptions embree, const RenderOptions& options) {
-  embree.threads = std::max(options.threads, 1);
-  embree.compactLeaves = embree.compactLeaves || options.compactBvh;
-  return embree;
-}
-
-}  // namespace
-
 RaycastRenderer::RaycastRenderer(const Scene& scene, const RenderOptions& options,
                                  const RaycastTuning& tuning)
     : scene_(scene),

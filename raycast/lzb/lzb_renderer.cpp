@@ -71,10 +71,7 @@ LzbRenderer::LzbRenderer(const Scene& scene, const RenderOptions& options, const
   options_.threads = std::max(options_.threads, 1);
   // Embree first: its build's transient memory (~30 bytes a triangle) then comes before the
   // octrees are held, not on top of them.
-  EmbreeSceneOptions eo;
-  eo.threads = options_.threads;
-  eo.compactLeaves = options_.compactBvh;
-  embree_ = std::make_unique<EmbreeScene>(scene, eo);
+  embree_ = std::make_unique<EmbreeScene>(scene, withRenderOptions({}, options_));
   accel_ = std::make_unique<LzbAccel>(scene, accelParams(lzb_));
   raster_ = std::make_unique<TriangleRasterizer>(scene);
   for (int t = 0; t < options_.threads; ++t) {

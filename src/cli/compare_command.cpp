@@ -36,13 +36,14 @@ nlohmann::json compareWithScene(const CompareArgs& a) {
   require(pair.origin.has_value(), a.reference,
           "has no camera in its header (lzb.camera.*), which --scene needs: render it again "
           "with this lzb");
-  const int threads = a.threads > 0 ? a.threads : coresOwned();
-  useThreads(threads);
+  RenderOptions options;
+  options.threads = a.threads > 0 ? a.threads : coresOwned();
+  useThreads(options.threads);
   const Scene scene = loadScene(a.scene, true);
   require(scene.expandedTriangles() == pair.origin->sceneTriangles, "--scene " + a.scene,
           "has " + std::to_string(scene.expandedTriangles()) + " triangles, but " + a.reference +
               " shows a scene of " + std::to_string(pair.origin->sceneTriangles));
-  const WitnessScene witnessScene(scene, nullptr, threads);
+  const WitnessScene witnessScene(scene, nullptr, options);
   const RayWitness witness = witnessScene.witness(pair.origin->camera);
   return compareFrames(pair, &witness);
 }

@@ -9,7 +9,7 @@ Judge makeJudge(const std::string& name, const Scene& scene, const RenderOptions
   Judge judge;
   judge.reference = methodNamed(name, "--reference").create(scene, options);
   // Built once (set-up time), unless the raycast reference lends its Embree scene.
-  if (root) judge.witness = std::make_unique<WitnessScene>(scene, judge.reference.get(), options.threads);
+  if (root) judge.witness = std::make_unique<WitnessScene>(scene, judge.reference.get(), options);
   return judge;
 }
 
@@ -23,7 +23,7 @@ Judge makePartJudge(const std::string& name, const HeldShare& held, const Render
     lent.push_back(inner.back().get());
   }
   Judge judge;
-  judge.parts = std::make_unique<PartWitness>(held, lent, options.threads);
+  judge.parts = std::make_unique<PartWitness>(held, lent, options);
   judge.reference = makePartRenderer(held, std::move(inner), name);
   return judge;
 }

@@ -47,13 +47,13 @@ bool before(const WitnessQuestion& a, const WitnessQuestion& b) {
 }  // namespace
 
 PartWitness::PartWitness(const HeldShare& held, const std::vector<const Renderer*>& references,
-                         int threads)
-    : held_(held), threads_(std::max(threads, 1)) {
+                         const RenderOptions& options)
+    : held_(held), threads_(std::max(options.threads, 1)) {
   for (size_t p = 0; p < held.parts.size(); ++p)
-    scenes_.push_back(held.parts[p].scene.expandedTriangles() > 0
-                          ? std::make_unique<WitnessScene>(held.parts[p].scene, references[p],
-                                                           threads)
-                          : nullptr);
+    scenes_.push_back(
+        held.parts[p].scene.expandedTriangles() > 0
+            ? std::make_unique<WitnessScene>(held.parts[p].scene, references[p], options)
+            : nullptr);
 }
 
 PartWitness::~PartWitness() = default;

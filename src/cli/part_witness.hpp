@@ -33,7 +33,8 @@ class PartWitness {
  public:
   // The witness scenes of this rank's parts: `references[p]`'s Embree scene where that part's
   // reference renders by raycast, else one built here (none for an empty part).
-  PartWitness(const HeldShare& held, const std::vector<const Renderer*>& references, int threads);
+  PartWitness(const HeldShare& held, const std::vector<const Renderer*>& references,
+              const RenderOptions& options);
   ~PartWitness();
 
   // Collective over `group`: the root's `questions` answered (true: proven visible) at the root,
