@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <span>
 #include <vector>
@@ -72,12 +73,13 @@ struct TileCast {
 
 // Traces the pixel centres of one tile into fb.
 TileCast traceTile(const EmbreeScene& embree, const Camera& camera, const TileRect& r, bool packets,
-                   const PixelReach& reach, Framebuffer& fb) {
+                   const PixelReach& reach, const BlockCover* cover, Framebuffer& fb) {
   TileCast cast;
   if (!tileReaches(reach, camera, r, fb)) return cast;
   if (!packets) {
     for (int y = r.y0; y < r.y1; ++y)
       for (int x = r.x0; x < r.x1; ++x) {
+        if (cover && !cover->covers(x, y)) continue;
         const size_t i = fb.index(x, y);
         Ray ray;
         if (!pixelRay(camera, reach, x, y, i, ray)) continue;
@@ -96,12 +98,14 @@ TileCast traceTile(const EmbreeScene& embree, const Camera& camera, const TileRe
   size_t pixel[kMax];
   size_t n = 0;
   for (int by = r.y0; by < r.y1; by += 4)
-    for (int bx = r.x0; bx < r.x1; bx += 4)
+    for (int bx = r.x0; bx < r.x1; bx += 4) {
+      if (cover && !cover->covers(bx, by)) continue;
       for (int y = by; y < std::min(by + 4, r.y1); ++y)
         for (int x = bx; x < std::min(bx + 4, r.x1); ++x) {
           pixel[n] = fb.index(x, y);
           n += pixelRay(camera, reach, x, y, pixel[n], rays[n]);
         }
+    }
   embree.intersect(std::span<const Ray>(rays, n), std::span<RayHit>(hits, n));
   for (size_t k = 0; k < n; ++k) {
     fb.depth[pixel[k]] = hits[k].hit() ? hits[k].t : kEmptyDepth;
@@ -112,24 +116,6 @@ TileCast traceTile(const EmbreeScene& embree, const Camera& camera, const TileRe
   return cast;
 }
 
-// The pixels whose centre rays can meet `box`: the rectangle of its corners' projections, a pixel
-// wider on each side for rounding; the whole frame when a corner is not in front of the camera;
-// none when the box is empty.
-TileRect pixelsUnder(const Bounds& box, const Camera& camera, int width, int height) {
-  if (box.empty()) return {0, 0, 0, 0};
-  glm::dvec2 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
-  for (int k = 0; k < 8; ++k) {
-    const glm::dvec3 p = camera.project(box.corner(k));
-    if (!(p.z > 0.0)) return {0, 0, width, height};
-    lo = glm::min(lo, glm::dvec2(p));
-    hi = glm::max(hi, glm::dvec2(p));
-  }
-  const auto x = [&](double v) { return int(std::clamp(v, 0.0, double(width))); };
-  const auto y = [&](double v) { return int(std::clamp(v, 0.0, double(height))); };
-  return {x(std::floor(lo.x) - 1.0), y(std::floor(lo.y) - 1.0), x(std::ceil(hi.x) + 1.0),
-          y(std::ceil(hi.y) + 1.0)};
-}
-
 bool overlap(const TileRect& a, const TileRect& b) {
   return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
 }
@@ -137,7 +123,8 @@ bool overlap(const TileRect& a, const TileRect& b) {
 // share's tiles under the projection of what embree holds.
 std::vector<int> tilesToCast(const EmbreeScene& embree, const Camera& camera,
                              const WorkShare& share, const ScreenTiles& tiles) {
-  const TileRect under = pixelsUnder(embree.heldBounds(), camera, camera.width(), camera.height());
+  const TileRect under =
+      pixelsUnder(embree.heldBounds(), CameraPlacement(camera, glm::dmat4(1.0)), camera);
   std::vector<int> mine;
   for (int t : tiles.owned(share))
     if (overlap(tiles.tile(t), under)) mine.push_back(t);
@@ -152,6 +139,81 @@ Bounds padded(const Bounds& box) {
 
 }  // namespace
 
+CameraPlacement::CameraPlacement(const Camera& camera, const glm::dmat4& toWorld) {
+  const glm::dmat3 rows = glm::transpose(glm::dmat3(camera.right(), camera.up(), camera.forward()));
+  a = rows * glm::dmat3(toWorld);
+  t = rows * (glm::dvec3(toWorld[3]) - camera.position());
+}
+
+TileRect pixelsUnder(const Bounds& box, const CameraPlacement& p, const Camera& camera) {
+  const int width = camera.width(), height = camera.height();
+  if (box.empty()) return {0, 0, 0, 0};
+  // Corner k = o + the edges whose bit k sets (Bounds::corner's order).
+  const glm::dvec3 o = p.a * box.lo + p.t;
+  const glm::dvec3 size = box.hi - box.lo;
+  const glm::dvec3 e[3] = {p.a[0] * size.x, p.a[1] * size.y, p.a[2] * size.z};
+  double near = o.z, far = o.z;
+  for (const glm::dvec3& edge : e) (edge.z < 0.0 ? near : far) += edge.z;
+  // (A margin of 1e-6 of the depths for the rounding of the corners and of Embree's bounds.)
+  const double slack = 1e-6 * std::max(std::abs(near), std::abs(far));
+  if (far < camera.nearPlane() - slack || near > camera.farPlane() + slack) return {0, 0, 0, 0};
+  if (!(near > 0.0)) return {0, 0, width, height};
+  glm::dvec2 lo(std::numeric_limits<double>::max()), hi(std::numeric_limits<double>::lowest());
+  for (int k = 0; k < 8; ++k) {
+    const glm::dvec3 c = o + (k & 1 ? e[0] : glm::dvec3(0.0)) + (k & 2 ? e[1] : glm::dvec3(0.0)) +
+                         (k & 4 ? e[2] : glm::dvec3(0.0));
+    const glm::dvec2 s(c.x / c.z, c.y / c.z);
+    lo = glm::min(lo, s);
+    hi = glm::max(hi, s);
+  }
+  // Camera::project's pixel coordinates (y down) of the extremes.
+  const double x0 = (lo.x / camera.tanHalfX() + 1.0) * 0.5 * width;
+  const double x1 = (hi.x / camera.tanHalfX() + 1.0) * 0.5 * width;
+  const double y0 = (1.0 - hi.y / camera.tanHalfY()) * 0.5 * height;
+  const double y1 = (1.0 - lo.y / camera.tanHalfY()) * 0.5 * height;
+  const auto x = [&](double v) { return int(std::clamp(v, 0.0, double(width))); };
+  const auto y = [&](double v) { return int(std::clamp(v, 0.0, double(height))); };
+  return {x(std::floor(x0) - 1.0), y(std::floor(y0) - 1.0), x(std::ceil(x1) + 1.0),
+          y(std::ceil(y1) + 1.0)};
+}
+
+BlockCover::BlockCover(int width, int height)
+    : columns_((width + kSide - 1) / kSide),
+      rows_((height + kSide - 1) / kSide),
+      under_(size_t(columns_) * size_t(rows_), 0) {}
+
+void BlockCover::add(const TileRect& r) {
+  if (r.x0 >= r.x1 || r.y0 >= r.y1) return;
+  const int c0 = r.x0 / kSide, c1 = (r.x1 - 1) / kSide;
+  for (int row = r.y0 / kSide; row <= (r.y1 - 1) / kSide; ++row)
+    std::fill_n(under_.begin() + std::ptrdiff_t(size_t(row) * size_t(columns_) + size_t(c0)),
+                c1 - c0 + 1, uint8_t(1));
+}
+
+bool BlockCover::anyIn(const TileRect& r) const {
+  if (r.x0 >= r.x1 || r.y0 >= r.y1) return false;
+  const int c0 = r.x0 / kSide, c1 = (r.x1 - 1) / kSide;
+  for (int row = r.y0 / kSide; row <= (r.y1 - 1) / kSide; ++row) {
+    const auto first = under_.begin() + std::ptrdiff_t(size_t(row) * size_t(columns_));
+    if (std::any_of(first + c0, first + c1 + 1, [](uint8_t u) { return u != 0; })) return true;
+  }
+  return false;
+}
+
+bool BlockCover::allIn(const TileRect& r) const {
+  if (r.x0 >= r.x1 || r.y0 >= r.y1) return true;
+  const int c0 = r.x0 / kSide, c1 = (r.x1 - 1) / kSide;
+  for (int row = r.y0 / kSide; row <= (r.y1 - 1) / kSide; ++row) {
+    const auto first = under_.begin() + std::ptrdiff_t(size_t(row) * size_t(columns_));
+    if (std::memchr(&*(first + c0), 0, size_t(c1 - c0 + 1))) return false;
+  }
+  return true;
+}
+
+uint64_t BlockCover::blocks() const {
+  return uint64_t(std::count(under_.begin(), under_.end(), 1));
+}
+
 uint64_t castablePixels(const EmbreeScene& embree, const Camera& camera) {
   const ScreenTiles tiles(camera.width(), camera.height());
   uint64_t pixels = 0;
@@ -160,11 +222,13 @@ uint64_t castablePixels(const EmbreeScene& embree, const Camera& camera) {
 }
 
 uint64_t castEveryPixel(const EmbreeScene& embree, const Camera& camera, const WorkShare& share,
-                        Framebuffer& fb, std::vector<uint8_t>& touched, int threads, bool packets) {
+                        Framebuffer& fb, std::vector<uint8_t>& touched, int threads, bool packets,
+                        const BlockCover* cover) {
   const ScreenTiles tiles(fb.width, fb.height);
   // Tiles beyond the projection of what the scene holds stay empty without a ray: a scene part
   // (--distribute data) casts only where its regions project.
-  const std::vector<int> mine = tilesToCast(embree, camera, share, tiles);
+  std::vector<int> mine = tilesToCast(embree, camera, share, tiles);
+  if (cover) std::erase_if(mine, [&](int t) { return !cover->anyIn(tiles.tile(t)); });
   touched.assign(size_t(tiles.count()), 0);
   PixelReach reach{share.drawnDepth, {}, 0.0, camera.farPlane()};
   if (reach.drawn) {
@@ -178,7 +242,7 @@ uint64_t castEveryPixel(const EmbreeScene& embree, const Camera& camera, const W
 #pragma omp parallel for schedule(dynamic, 1) num_threads(std::max(threads, 1)) reduction(+ : rays)
   for (long k = 0; k < count; ++k) {
     const TileCast cast =
-        traceTile(embree, camera, tiles.tile(mine[size_t(k)]), packets, reach, fb);
+        traceTile(embree, camera, tiles.tile(mine[size_t(k)]), packets, reach, cover, fb);
     touched[size_t(mine[size_t(k)])] = uint8_t(cast.hit);
     rays += long(cast.rays);
   }

@@ -8,6 +8,7 @@
 #include "raycast/exact/pixel_cast.hpp"
 #include "src/core/error.hpp"
 #include "src/core/timer.hpp"
+#include "src/hybrid/screen_cover.hpp"
 #include "src/splat/splatter.hpp"
 
 namespace lzb::hybrid {
@@ -255,9 +256,29 @@ bool HybridRenderer::everyPixelPays(const Camera& camera, std::span<const double
 void HybridRenderer::castEveryPixelInstead(const Camera& camera, const WorkShare& share,
                                            Framebuffer& fb, FrameStats& stats, Stopwatch& clock) {
   stats.setShared("every_pixel_cast", 1.0);
-  stats.addCount("rays_cast", double(castEveryPixel(lzb_.embree(), camera, share, fb,
-                                                    stats.touchedTiles, options_.threads)));
+  const std::optional<BlockCover> cover = coverWhereSparse(camera, stats);
+  stats.addStage("cover", clock.lap());
+  stats.addCount("rays_cast",
+                 double(castEveryPixel(lzb_.embree(), camera, share, fb, stats.touchedTiles,
+                                       options_.threads, true, cover ? &*cover : nullptr)));
   stats.addStage("trace", clock.lap());
+}
+
+std::optional<BlockCover> HybridRenderer::coverWhereSparse(const Camera& camera,
+                                                           FrameStats& stats) const {
+  const double castable = double(castablePixels(lzb_.embree(), camera));
+  if (!coarseDepths_.empty()) {  // the probe's rays: cover only where most castable pixels miss
+    const double hits = double(std::count_if(coarseDepths_.begin(), coarseDepths_.end(),
+                                             [](double t) { return std::isfinite(t); }));
+    const double covered =
+        hits / double(coarseDepths_.size()) * double(camera.width()) * double(camera.height());
+    if (covered >= HybridParams::kCoverBelowShare * castable) return std::nullopt;
+  }
+  const uint64_t budget = uint64_t(castable / double(BlockCover::kSide * BlockCover::kSide) *
+                                   HybridParams::kCoverNodesPerBlock);
+  std::optional<BlockCover> cover = screenCover(lzb_.accel(), camera, budget);
+  stats.setShared("cover_blocks", cover ? double(cover->blocks()) : -1.0);
+  return cover;
 }
 
 bool HybridRenderer::planeCostsMoreThanCasting(const Camera& camera, FrameStats& stats) const {

@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include "raycast/exact/pixel_cast.hpp"
 #include "raycast/lzb/lzb_renderer.hpp"
 #include "src/core/depth_key.hpp"
 #include "src/core/frame_probe.hpp"
@@ -78,6 +79,11 @@ struct HybridParams {
   // the estimate was below 0.2-0.48 of the castable pixels, and slower from 0.59, on the cities,
   // the armadillo and the landscape at 10^6).
   static constexpr double kCastPixelCost = 0.5;
+  // A frame cast every pixel walks its screen cover (screen_cover.hpp) when the probe's coarse
+  // rays hit in less than this share of the castable pixels (the rest would miss), up to this
+  // many octree nodes and instances per castable 4 x 4 block.
+  static constexpr double kCoverBelowShare = 0.5;
+  static constexpr double kCoverNodesPerBlock = 1.0;
   // The local z-buffering stages (final stage, native z-buffers); its far rays walk the octrees
   // in frames where the point pass takes leaves (only the walk skips them), else are Embree's.
   localz::LzbOptions lzb;
@@ -118,9 +124,13 @@ class HybridRenderer : public Renderer, public FrameProbe {
   // After the plane (auto, a frame alone): whether the cost plane's estimate exceeds what
   // casting every pixel costs (kCastPixelCost).
   bool planeCostsMoreThanCasting(const Camera& camera, FrameStats& stats) const;
-  // Draws the frame as raycast does (the rest of the clock's time is its "trace").
+  // Draws the frame as raycast does (the rest of the clock's time is its "trace"), within the
+  // screen cover where the frame is sparse.
   void castEveryPixelInstead(const Camera& camera, const WorkShare& share, Framebuffer& fb,
                              FrameStats& stats, Stopwatch& clock);
+  // The frame's screen cover when the probe's rays (if any) say most castable pixels miss and
+  // the walk stays within kCoverNodesPerBlock; none otherwise.
+  std::optional<BlockCover> coverWhereSparse(const Camera& camera, FrameStats& stats) const;
   // The counts in front of the probe's plane placed from frameDepths (culls up to it).
   ProbeCounts probeCounts(localz::LzbRenderer::Frame& f, std::span<const double> frameDepths);
   // Step 2: the sampled leaves of this frame, this rank's share splatted into points_.

@@ -377,6 +377,33 @@ TEST(HybridRenderer, ProbeCastsEveryPixelWhereNearTrianglesOutnumberThePixelsThe
   }
 }
 
+// The city from outside (its circle's middle frames): the probe casts every pixel, its coarse
+// rays miss in most castable pixels, and the rays stay in the screen cover: fewer rays than
+// castable pixels, raycast's image byte for byte, and so split over 2 and 3 ranks.
+TEST(HybridRenderer, AFrameCastFromAfarCastsOnlyUnderItsScreenCover) {
+  const Scene city = loadScene("builtin:city?blocks=3", true);
+  const Camera cam = test::pathFrame(city, 5, 11, 256, 192);
+  HybridRenderer hybrid(city, test::renderOptions("lzb", 2), HybridParams{});
+  RaycastRenderer raycast(city, test::renderOptions("raycast", 2));
+  FrameStats hs, rs;
+  const Framebuffer image = test::renderFrame(hybrid, cam, &hs);
+  const Framebuffer exact = test::renderFrame(raycast, cam, &rs);
+  EXPECT_EQ(hs.shared.value("every_pixel_cast", -1.0), 1.0);
+  const double blocks = hs.shared.value("cover_blocks", -1.0);
+  EXPECT_GT(blocks, 0.0);
+  EXPECT_EQ(hs.counts.value("rays_cast", 0.0), 16.0 * blocks);
+  EXPECT_LT(hs.counts.value("rays_cast", 0.0), 0.5 * rs.counts.value("rays", 0.0));
+  EXPECT_EQ(image.id, exact.id);
+  EXPECT_EQ(image.depth, exact.depth);
+  for (int size : {2, 3}) {
+    Framebuffer composite(cam.width(), cam.height());
+    for (int rank = 0; rank < size; ++rank)
+      compositeNearer(composite, test::renderFrame(hybrid, cam, nullptr, {rank, size}));
+    EXPECT_EQ(composite.id, exact.id) << size << " ranks";
+    EXPECT_EQ(composite.depth, exact.depth) << size << " ranks";
+  }
+}
+
 TEST(HybridRenderer, BadParametersNameTheOption) {
   EXPECT_EQ(hybrid::parseFrameWay("rays", "--frame-way"), hybrid::FrameWay::kRays);
   try {
