@@ -179,35 +179,37 @@ TileRect pixelsUnder(const Bounds& box, const CameraPlacement& p, const Camera& 
 
 BlockCover::BlockCover(int width, int height)
     : columns_((width + kSide - 1) / kSide),
-      rows_((height + kSide - 1) / kSide),
-      under_(size_t(columns_) * size_t(rows_), 0) {}
+      under_(size_t(columns_) * size_t((height + kSide - 1) / kSide), 0) {}
+
+template <class Row>
+bool BlockCover::eachRow(const TileRect& r, Row&& row) const {
+  const int c0 = r.x0 / kSide, count = (r.x1 - 1) / kSide - c0 + 1;
+  for (int y = r.y0 / kSide; y <= (r.y1 - 1) / kSide; ++y)
+    if (!row(size_t(y) * size_t(columns_) + size_t(c0), size_t(count))) return false;
+  return true;
+}
 
 void BlockCover::add(const TileRect& r) {
   if (r.x0 >= r.x1 || r.y0 >= r.y1) return;
-  const int c0 = r.x0 / kSide, c1 = (r.x1 - 1) / kSide;
-  for (int row = r.y0 / kSide; row <= (r.y1 - 1) / kSide; ++row)
-    std::fill_n(under_.begin() + std::ptrdiff_t(size_t(row) * size_t(columns_) + size_t(c0)),
-                c1 - c0 + 1, uint8_t(1));
+  eachRow(r, [&](size_t first, size_t n) {
+    std::fill_n(under_.begin() + std::ptrdiff_t(first), n, uint8_t(1));
+    return true;
+  });
 }
 
 bool BlockCover::anyIn(const TileRect& r) const {
   if (r.x0 >= r.x1 || r.y0 >= r.y1) return false;
-  const int c0 = r.x0 / kSide, c1 = (r.x1 - 1) / kSide;
-  for (int row = r.y0 / kSide; row <= (r.y1 - 1) / kSide; ++row) {
-    const auto first = under_.begin() + std::ptrdiff_t(size_t(row) * size_t(columns_));
-    if (std::any_of(first + c0, first + c1 + 1, [](uint8_t u) { return u != 0; })) return true;
-  }
-  return false;
+  return !eachRow(r, [&](size_t first, size_t n) {
+    return std::count(under_.begin() + std::ptrdiff_t(first),
+                      under_.begin() + std::ptrdiff_t(first + n), uint8_t(0)) == std::ptrdiff_t(n);
+  });
 }
 
 bool BlockCover::allIn(const TileRect& r) const {
   if (r.x0 >= r.x1 || r.y0 >= r.y1) return true;
-  const int c0 = r.x0 / kSide, c1 = (r.x1 - 1) / kSide;
-  for (int row = r.y0 / kSide; row <= (r.y1 - 1) / kSide; ++row) {
-    const auto first = under_.begin() + std::ptrdiff_t(size_t(row) * size_t(columns_));
-    if (std::memchr(&*(first + c0), 0, size_t(c1 - c0 + 1))) return false;
-  }
-  return true;
+  return eachRow(r, [&](size_t first, size_t n) {
+    return std::memchr(under_.data() + first, 0, n) == nullptr;
+  });
 }
 
 uint64_t BlockCover::blocks() const {

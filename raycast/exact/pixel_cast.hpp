@@ -50,7 +50,12 @@ class BlockCover {
   uint64_t blocks() const;                   // blocks covered
 
  private:
-  int columns_, rows_;
+  // row(first, count) for the blocks of each row of r (not empty) until it returns false;
+  // whether none did.
+  template <class Row>
+  bool eachRow(const TileRect& r, Row&& row) const;
+
+  int columns_;
   std::vector<uint8_t> under_;
 };
 
