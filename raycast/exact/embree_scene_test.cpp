@@ -436,11 +436,7 @@ TEST(EmbreeScene, TiesAtEdgesSharedByInstancesGoToTheLeastId) {
 // ray at a time and as packets; t is computed otherwise (a quarter of these hits differ, by up
 // to ~10 ulps, on this soup's oblique triangles; none over 8 frames of the 10^7 landscape).
 TEST(EmbreeScene, CompactLeavesHoldLessAndHitAlike) {
-  Scene scene;
-  scene.addNode("soup");
-  std::mt19937_64 rng(8);
-  test::addRandomTriangles(scene.nodes[0].mesh, 20000, 0.05, rng);
-  scene.finalize();
+  const Scene scene = test::soupScene(20000, 0.05, 8);
   EmbreeSceneOptions compact;
   compact.compactLeaves = true;
   const EmbreeScene fast(scene, {}), small(scene, compact);

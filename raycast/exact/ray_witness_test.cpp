@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
-#include <random>
 
 #include "raycast/exact/raycast_renderer.hpp"
 #include "tests/support/scenes.hpp"
@@ -169,11 +168,7 @@ TEST(WitnessScene, SharesTheRaycastReferencesEmbreeSceneElseBuildsItsOwn) {
 // Its own scene is built as the raycast reference would be under the render's options: compact
 // leaves under --bvh compact (fewer bytes on a soup large enough for leaves to dominate).
 TEST(WitnessScene, BuildsItsOwnSceneUnderTheRendersBvh) {
-  Scene scene;
-  scene.addNode("soup");
-  std::mt19937_64 rng(9);
-  test::addRandomTriangles(scene.nodes[0].mesh, 20000, 0.05, rng);
-  scene.finalize();
+  const Scene scene = test::soupScene(20000, 0.05, 9);
   RenderOptions fast, compact;
   compact.compactBvh = true;
   const WitnessScene a(scene, nullptr, fast), b(scene, nullptr, compact);

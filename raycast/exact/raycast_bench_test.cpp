@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -58,11 +57,7 @@ void report(const char* what, const Timing& t) {
 
 TEST(RaycastBench, TriangleSoup2M) {
   if (!benchEnabled()) GTEST_SKIP() << "set LZB_BENCH=1";
-  Scene scene;
-  scene.addNode("soup");
-  std::mt19937_64 rng(1);
-  test::addRandomTriangles(scene.nodes[0].mesh, 2'000'000, 0.01, rng);
-  scene.finalize();
+  const Scene scene = test::soupScene(2'000'000, 0.01, 1);
   CameraSpec spec = frameBounds(scene.bounds());
   spec.position = spec.lookAt + 0.45 * (spec.position - spec.lookAt);  // the soup fills the view
   spec.nearPlane = 0.01;

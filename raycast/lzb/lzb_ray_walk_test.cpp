@@ -18,16 +18,6 @@ constexpr LeafTest kTests[] = {LeafTest::kAll, LeafTest::kStatic, LeafTest::kDyn
                                LeafTest::kHybrid};
 constexpr OctreeWalk kWalks[] = {OctreeWalk::kTopDown, OctreeWalk::kCoherent};
 
-Scene soupScene(size_t triangles, uint64_t seed) {
-  std::mt19937_64 rng(seed);
-  Scene s;
-  s.source = "soup";
-  s.addNode("soup");
-  test::addRandomTriangles(s.nodes[0].mesh, triangles, 0.25, rng);
-  s.finalize();
-  return s;
-}
-
 LzbAccelParams smallLeaves() {
   LzbAccelParams p;
   p.leafEntries = 12;  // deep trees: many ropes, many leaves per ray
@@ -37,7 +27,7 @@ LzbAccelParams smallLeaves() {
 }
 
 TEST(OctreeRopes, RopesAreEqualOrLargerFaceNeighbours) {
-  const Scene scene = soupScene(3000, 3);
+  const Scene scene = test::soupScene(3000, 0.25, 3);
   const LzbAccel accel(scene, smallLeaves());
   const Octree& tree = accel.node(0).octree();
   const OctreeRopes& ropes = accel.node(0).ropes();
@@ -69,7 +59,7 @@ TEST(OctreeRopes, RopesAreEqualOrLargerFaceNeighbours) {
 }
 
 TEST(OctreeRopes, LocateFromAnyHintEqualsDescentFromTheRoot) {
-  const Scene scene = soupScene(3000, 4);
+  const Scene scene = test::soupScene(3000, 0.25, 4);
   const LzbAccel accel(scene, smallLeaves());
   const Octree& tree = accel.node(0).octree();
   const OctreeRopes& ropes = accel.node(0).ropes();
@@ -118,7 +108,7 @@ void expectPvlHoldsHits(const Scene& scene, const std::vector<glm::dvec3>& origi
 }
 
 TEST(RayWalker, PvlHoldsTheExactHitOnATriangleSoup) {
-  const Scene scene = soupScene(4000, 6);
+  const Scene scene = test::soupScene(4000, 0.25, 6);
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<glm::dvec3> origins, dirs;
@@ -144,7 +134,7 @@ TEST(RayWalker, PvlHoldsTheExactHitThroughNestedInstances) {
 TEST(RayWalker, RaysAlongOctreePlanes) {
   // Axis-parallel rays starting on the root's splitting planes (zero direction components,
   // rays lying in the planes between leaves).
-  const Scene scene = soupScene(4000, 8);
+  const Scene scene = test::soupScene(4000, 0.25, 8);
   const LzbAccel probe(scene, smallLeaves());
   const glm::dvec3 mid = probe.node(0).octree().bounds().center();
   std::mt19937_64 rng(9);
@@ -187,7 +177,7 @@ TEST(RayWalker, CoherentAndTopDownRecordTheSameLeaves) {
 }
 
 TEST(RayWalker, OccludersCutTestsAndLazyTestsMost) {
-  const Scene scene = soupScene(6000, 10);
+  const Scene scene = test::soupScene(6000, 0.25, 10);
   LzbAccelParams params;  // the paper's leaves: up to 150 triangles
   const LzbAccel accel(scene, params);
   std::mt19937_64 rng(11);

@@ -38,6 +38,16 @@ glm::dmat4 randomTransform(std::mt19937_64& rng, double lo, double hi) {
   return glm::scale(m, glm::dvec3(s(rng), s(rng), s(rng)));
 }
 
+Scene soupScene(size_t triangles, double size, uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  Scene s;
+  s.source = "soup";
+  s.addNode("soup");
+  addRandomTriangles(s.nodes[0].mesh, triangles, size, rng);
+  s.finalize();
+  return s;
+}
+
 Scene nestedScene(uint64_t seed) {
   std::mt19937_64 rng(seed);
   Scene s;

@@ -21,6 +21,9 @@ Scene quadScene();
 // Random triangles of about `size` inside [-1, 1]^3 until the mesh holds `count`.
 void addRandomTriangles(Mesh& mesh, size_t count, double size, std::mt19937_64& rng);
 
+// One node "soup" of `triangles` random triangles of about `size` (addRandomTriangles), finalized.
+Scene soupScene(size_t triangles, double size, uint64_t seed);
+
 // Rotation about a random axis, non-uniform scale in [lo, hi], translation in [-1, 1]^3.
 glm::dmat4 randomTransform(std::mt19937_64& rng, double lo, double hi);
 
