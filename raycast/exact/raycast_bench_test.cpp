@@ -15,15 +15,13 @@
 #include "raycast/exact/raycast_renderer.hpp"
 #include "src/core/system.hpp"
 #include "src/scene/load.hpp"
+#include "tests/support/bench.hpp"
 #include "tests/support/scenes.hpp"
 
 namespace lzb {
 namespace {
 
-bool benchEnabled() {
-  const char* v = std::getenv("LZB_BENCH");
-  return v && *v && *v != '0';
-}
+using test::benchEnabled;
 
 // Best frame of several: other processes may share the cores, so the minimum is the estimate.
 struct Timing {

@@ -14,14 +14,14 @@
 //   fill       clearing the framebuffer's depth and ID (pixels written per second);
 //   scan       reading every pixel's ID (pixels read per second: the unfinished mask's input).
 // Each stage's rate is its work over its seconds, beside the limit that bounds it.
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "raycast/exact/raycast_renderer.hpp"
 #include "raycast/lzb/lzb_renderer.hpp"
@@ -31,25 +31,16 @@
 #include "src/image/metrics.hpp"
 #include "src/scene/load.hpp"
 #include "src/zbuffer/zbuffer_renderer.hpp"
+#include "tests/support/bench.hpp"
 #include "tests/support/cameras.hpp"
 #include "tests/support/options.hpp"
 
 namespace lzb::localz {
 namespace {
 
-bool benchEnabled() {
-  const char* v = std::getenv("LZB_BENCH");
-  return v && *v && *v != '0';
-}
-
-std::string envString(const char* name, const std::string& fallback) {
-  const char* v = std::getenv(name);
-  return v && *v ? std::string(v) : fallback;
-}
-
-int envInt(const char* name, int fallback) {
-  return std::atoi(envString(name, std::to_string(fallback)).c_str());
-}
+using test::benchEnabled;
+using test::envInt;
+using test::envString;
 
 // Per frame, per figure: the values of every round.
 using Samples = std::vector<std::map<std::string, std::vector<double>>>;

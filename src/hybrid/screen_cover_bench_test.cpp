@@ -4,34 +4,30 @@
 // Per frame of the city's circle (LZB_BENCH_SCENE, default builtin:city, 1920 x 1080, 11
 // frames) and per thread count (1 and 2): castEveryPixel without a cover and the walk plus the
 // cast with it, alternating, LZB_BENCH_ROUNDS times (5); medians. The two images must match.
+#include <gtest/gtest.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "src/core/statistics.hpp"
 #include "src/core/timer.hpp"
 #include "src/hybrid/screen_cover.hpp"
 #include "src/scene/load.hpp"
+#include "tests/support/bench.hpp"
 #include "tests/support/cameras.hpp"
 
 namespace lzb {
 namespace {
 
-std::string env(const char* name, const std::string& fallback) {
-  const char* v = std::getenv(name);
-  return v && *v ? v : fallback;
-}
-
 TEST(ScreenCoverBench, CastWithAndWithoutTheCover) {
-  if (env("LZB_BENCH", "0") == "0") GTEST_SKIP() << "set LZB_BENCH=1";
-  const std::string spec = env("LZB_BENCH_SCENE", "builtin:city");
-  const int width = std::stoi(env("LZB_BENCH_WIDTH", "1920"));
-  const int height = std::stoi(env("LZB_BENCH_HEIGHT", "1080"));
-  const int frames = std::stoi(env("LZB_BENCH_FRAMES", "11"));
-  const int rounds = std::stoi(env("LZB_BENCH_ROUNDS", "5"));
+  if (!test::benchEnabled()) GTEST_SKIP() << "set LZB_BENCH=1";
+  const std::string spec = test::envString("LZB_BENCH_SCENE", "builtin:city");
+  const int width = test::envInt("LZB_BENCH_WIDTH", 1920);
+  const int height = test::envInt("LZB_BENCH_HEIGHT", 1080);
+  const int frames = test::envInt("LZB_BENCH_FRAMES", 11);
+  const int rounds = test::envInt("LZB_BENCH_ROUNDS", 5);
   const Scene scene = loadScene(spec, true);
   const localz::LzbAccel accel(scene, {});
   EmbreeSceneOptions eo;

@@ -15,15 +15,13 @@
 #include "src/sampletree/tree_build.hpp"
 #include "src/scene/load.hpp"
 #include "src/zbuffer/native_raster.hpp"
+#include "tests/support/bench.hpp"
 #include "tests/support/cameras.hpp"
 
 namespace lzb::sampletree {
 namespace {
 
-bool benchEnabled() {
-  const char* v = std::getenv("LZB_BENCH");
-  return v && *v && *v != '0';
-}
+using test::benchEnabled;
 
 double bestOf3(const std::function<void()>& draw) {
   double best = 1e30;

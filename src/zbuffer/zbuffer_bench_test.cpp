@@ -14,16 +14,14 @@
 #include "src/core/timer.hpp"
 #include "src/zbuffer/triangle_rasterizer.hpp"
 #include "src/zbuffer/zbuffer_renderer.hpp"
+#include "tests/support/bench.hpp"
 
 namespace lzb {
 namespace {
 
 constexpr size_t kTriangles = 2'000'000;
 
-bool benchEnabled() {
-  const char* v = std::getenv("LZB_BENCH");
-  return v && *v && *v != '0';
-}
+using test::benchEnabled;
 
 Scene soupScene() {
   Scene scene;
