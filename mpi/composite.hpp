@@ -12,8 +12,8 @@
 //           largest power of two fold into it first), then the owned stripes gathered;
 //   direct  direct send: each rank sends its touched rectangle's part of every stripe of the
 //           union to the stripe's owner, which reduces it; then the stripes are gathered;
-//   tiles   each rank sends its touched 16 x 16 tiles straight to the root, which reduces them
-//           (cheapest where ranks own disjoint tiles).
+//   tiles   each rank sends its touched 16 x 16 tiles straight to the root in chunks, which it
+//           reduces as they come (cheapest where ranks own disjoint tiles).
 // Renderers whose colour is not a function of the IDs (rzb's Gaussian reconstruction, the regions
 // of --distribute data) composite whole 16-byte pixels with compositeWithColour, equal (depth, ID)
 // keeping the lower rank's: by touched tiles with `tiles`, else by MPI_Reduce of the frame.
