@@ -426,9 +426,9 @@ size_t tileBytes(const TileRect& r, size_t (*rowBytes)(int)) {
 }
 
 // The tiles composite's messages: a rank's touched tiles go to the root in chunks of
-// kTilesPerChunk, the last one tagged kLastChunkTag, so that the root merges a chunk while the
-// rank packs the next.
-constexpr int kChunkTag = 2, kLastChunkTag = 3;
+// kTilesPerChunk, then an empty message ends them, so that the root merges a chunk while the rank
+// packs the next. One tag on the group's communicator (no other message is matched).
+constexpr int kTilesTag = 2;
 constexpr size_t kTilesPerChunk = 32;
 
 // Packs tiles [begin, end) of `list` to out + at[begin], in parallel over the tiles.
@@ -458,16 +458,15 @@ size_t sendTiles(const Group& g, const Framebuffer& fb, const ScreenTiles& tiles
     at[k + 1] = at[k] + tileBytes(tiles.tile(list[k]), &TileRows<K>::rowBytes);
   TileBuffers& b = tileBuffers();
   char* out = TileBuffers::fit(b.send, b.sendSize, at.back());
-  std::vector<MPI_Request> sends;
-  for (size_t begin = 0, end = 0;; begin = end) {  // one message even when nothing was touched
-    end = std::min(list.size(), begin + kTilesPerChunk);
+  std::vector<MPI_Request> sends(1);
+  for (size_t begin = 0; begin < list.size(); begin += kTilesPerChunk) {
+    const size_t end = std::min(list.size(), begin + kTilesPerChunk);
     packTiles<K>(fb, tiles, list, at, begin, end, out);
-    const int tag = end == list.size() ? kLastChunkTag : kChunkTag;
     sends.emplace_back();
-    LZB_MPI_CALL(MPI_Isend(out + at[begin], int(at[end] - at[begin]), MPI_BYTE, 0, tag, g.comm,
-                           &sends.back()));
-    if (end == list.size()) break;
+    LZB_MPI_CALL(MPI_Isend(out + at[begin], int(at[end] - at[begin]), MPI_BYTE, 0, kTilesTag,
+                           g.comm, &sends.back()));
   }
+  LZB_MPI_CALL(MPI_Isend(nullptr, 0, MPI_BYTE, 0, kTilesTag, g.comm, &sends.front()));  // the end
   LZB_MPI_CALL(MPI_Waitall(int(sends.size()), sends.data(), MPI_STATUSES_IGNORE));
   return at.back();
 }
@@ -502,14 +501,12 @@ void receiveTiles(const Group& g, Framebuffer& fb, const ScreenTiles& tiles,
                   std::vector<uint8_t>& touched) {
   TileBuffers& b = tileBuffers();
   for (int r = 1; r < g.size; ++r) {
-    for (int tag = kChunkTag; tag != kLastChunkTag;) {
+    for (int bytes = 1; bytes > 0;) {  // until the empty message
       MPI_Status status;
-      LZB_MPI_CALL(MPI_Probe(r, MPI_ANY_TAG, g.comm, &status));
-      int bytes = 0;
+      LZB_MPI_CALL(MPI_Probe(r, kTilesTag, g.comm, &status));
       LZB_MPI_CALL(MPI_Get_count(&status, MPI_BYTE, &bytes));
-      tag = status.MPI_TAG;
       char* in = TileBuffers::fit(b.receive, b.receiveSize, size_t(bytes));
-      LZB_MPI_CALL(MPI_Recv(in, bytes, MPI_BYTE, r, tag, g.comm, MPI_STATUS_IGNORE));
+      LZB_MPI_CALL(MPI_Recv(in, bytes, MPI_BYTE, r, kTilesTag, g.comm, MPI_STATUS_IGNORE));
       mergeTiles<K>(in, size_t(bytes), tiles, fb, touched);
     }
   }
