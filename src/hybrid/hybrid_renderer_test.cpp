@@ -57,6 +57,17 @@ HybridParams sampling() {
   return p;
 }
 
+// Rank shares of r's frame, 2 and then 3 of them composited, give `whole`'s IDs and depths.
+void expectSharesComposeTo(Renderer& r, const Camera& cam, const Framebuffer& whole) {
+  for (int size : {2, 3}) {
+    Framebuffer composite(cam.width(), cam.height());
+    for (int rank = 0; rank < size; ++rank)
+      compositeNearer(composite, test::renderFrame(r, cam, nullptr, {rank, size}));
+    EXPECT_EQ(composite.id, whole.id) << size << " ranks";
+    EXPECT_EQ(composite.depth, whole.depth) << size << " ranks";
+  }
+}
+
 TEST(HybridRenderer, IsExactOnTheCity) {
   const Scene scene = loadScene("builtin:city?blocks=4", true);
   HybridRenderer r(scene, test::renderOptions("lzb", 2), HybridParams{});
@@ -368,13 +379,7 @@ TEST(HybridRenderer, ProbeCastsEveryPixelWhereNearTrianglesOutnumberThePixelsThe
   RaycastRenderer cityRays(city, test::renderOptions("raycast", 1));
   const Framebuffer whole = test::renderFrame(cityRays, street);
   EXPECT_EQ(test::renderFrame(cast, street).id, whole.id);
-  for (int size : {2, 3}) {
-    Framebuffer composite(street.width(), street.height());
-    for (int rank = 0; rank < size; ++rank)
-      compositeNearer(composite, test::renderFrame(cast, street, nullptr, {rank, size}));
-    EXPECT_EQ(composite.id, whole.id) << size << " ranks";
-    EXPECT_EQ(composite.depth, whole.depth) << size << " ranks";
-  }
+  expectSharesComposeTo(cast, street, whole);
 }
 
 // The city from outside (its circle's middle frames): the probe casts every pixel, its coarse
@@ -395,13 +400,7 @@ TEST(HybridRenderer, AFrameCastFromAfarCastsOnlyUnderItsScreenCover) {
   EXPECT_LT(hs.counts.value("rays_cast", 0.0), 0.5 * rs.counts.value("rays", 0.0));
   EXPECT_EQ(image.id, exact.id);
   EXPECT_EQ(image.depth, exact.depth);
-  for (int size : {2, 3}) {
-    Framebuffer composite(cam.width(), cam.height());
-    for (int rank = 0; rank < size; ++rank)
-      compositeNearer(composite, test::renderFrame(hybrid, cam, nullptr, {rank, size}));
-    EXPECT_EQ(composite.id, exact.id) << size << " ranks";
-    EXPECT_EQ(composite.depth, exact.depth) << size << " ranks";
-  }
+  expectSharesComposeTo(hybrid, cam, exact);
 }
 
 TEST(HybridRenderer, BadParametersNameTheOption) {
