@@ -9,16 +9,12 @@
 //    which every rank knows alike).
 //  - Items by cost (octree boxes of the point pass): contiguous runs of about equal estimated
 //    cost, in the items' own order.
-//  - Regions (--distribute data): the scene cut into spatial boxes balanced by triangle count, a
-//    k-d split that depends on the scene and the region count alone; dealt in k-d order to the
-//    rank holding the fewest triangles so far (round-robin when equal).
+// The scene's regions under --distribute data are cut and dealt in src/regions (region_cut.hpp).
 #include <algorithm>
 #include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "src/core/renderer.hpp"
 
@@ -81,24 +77,5 @@ class ScreenTiles {
 // total cost holds the midpoint of i's cost interval, so every rank gets a contiguous run of
 // about equal cost (all items to rank 0 when the total is 0).
 std::vector<uint32_t> dealByCost(std::span<const double> costs, const WorkShare& share);
-
-// ---- Regions
-
-// Cuts units (pieces of the scene that go whole to one region, at world position centres[u],
-// costing triangles[u], or 1 each when triangles is empty) into `regions` regions: a k-d split
-// that halves the region count at each step along the widest axis of its units' centres, at the
-// point where the triangles before it match the regions before it. Ties break by unit index, so
-// the result depends on the units and `regions` alone. Returns each unit's region in
-// [0, regions); a region may stay empty when there are fewer units than regions.
-std::vector<uint32_t> splitIntoRegions(std::span<const glm::dvec3> centres,
-                                       std::span<const uint64_t> triangles, uint32_t regions);
-
-// The regions rank share.rank holds, given each region's triangles: in the k-d order, each
-// region to the rank holding the fewest triangles so far (the first such rank). Equal regions go
-// round-robin, so neighbours in space land on different ranks and a view's cost spreads over
-// them, as interleaved screen tiles do (a rank holding a cluster of neighbours did most of the
-// frame whenever the camera stood among them); uneven ones still balance.
-std::vector<uint32_t> regionsOfRank(std::span<const uint64_t> regionTriangles,
-                                    const WorkShare& share);
 
 }  // namespace lzb

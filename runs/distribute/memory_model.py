@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The memory model behind --distribute's estimates (src/cli/memory_estimate.cpp): each method's
+"""The memory model behind --distribute's estimates (src/regions/memory_estimate.cpp): each method's
 peak memory on one rank (2 threads, 640x480, 2 frames, replicated) on the landscape at two sizes,
 fitted as base + bytes per unique triangle. The estimate's constants are the fitted slopes,
 rounded up, and the largest base.

@@ -4,15 +4,15 @@
 #include <cstdio>
 #include <optional>
 
-#include "src/cli/distribute.hpp"
-#include "src/cli/memory_estimate.hpp"
 #include "src/cli/methods.hpp"
 #include "src/cli/report.hpp"
-#include "src/cli/streamed_share.hpp"
 #include "src/core/error.hpp"
 #include "src/core/system.hpp"
 #include "src/core/timer.hpp"
 #include "src/octree/octree.hpp"
+#include "src/regions/memory_estimate.hpp"
+#include "src/regions/share.hpp"
+#include "src/regions/streamed_share.hpp"
 #include "src/scene/load.hpp"
 
 namespace lzb {
@@ -57,26 +57,27 @@ void printEstimate(const nlohmann::json& e) {
 nlohmann::json rankEstimates(const InfoArgs& a, const std::vector<uint64_t>& held,
                              uint64_t unique) {
   nlohmann::json ranks = nlohmann::json::array();
-  const bool compact = parseCompactBvh(a.bvh, "--bvh");
+  const bool compact = regions::parseCompactBvh(a.bvh, "--bvh");
   for (int r = 0; r < a.ranks; ++r) {
     // An instanced share holds at most the scene's unique triangles.
     const uint64_t triangles = std::min(held[size_t(r)], unique);
     ranks.push_back({{"rank", r},
                      {"triangles", triangles},
-                     {"peak_bytes", methodPeakBytes(a.method, triangles, compact)}});
+                     {"peak_bytes", regions::methodPeakBytes(a.method, triangles, compact)}});
   }
   // The model's slope: the method's set-up and frames, scene model included.
-  const double perTriangle =
-      double(methodPeakBytes(a.method, 1, compact) - methodPeakBytes(a.method, 0, compact));
+  const double perTriangle = double(regions::methodPeakBytes(a.method, 1, compact) -
+                                    regions::methodPeakBytes(a.method, 0, compact));
   return {{"method", a.method},         {"bvh", a.bvh},   {"bytes_per_triangle", perTriangle},
           {"distribute", a.distribute}, {"ranks", ranks}, {"usable_bytes", usableMemoryBytes()}};
 }
 
 nlohmann::json rankEstimates(const InfoArgs& a, const Scene& scene) {
   std::vector<uint64_t> held(size_t(a.ranks), scene.uniqueTriangles());
-  if (parseDistribution(a.distribute, "--distribute") == Distribution::kData)
-    held = trianglesPerRank(scene, a.regions, partsFor(a.method), wholeProceduralFor(a.method),
-                            a.ranks);
+  const Method& method = methodNamed(a.method, "--method");
+  if (regions::parseDistribution(a.distribute, "--distribute") == regions::Distribution::kData)
+    held = regions::trianglesPerRank(scene, a.regions, regions::partsFor(method),
+                                     method.samplesProceduralObjects(), a.ranks);
   return rankEstimates(a, held, scene.uniqueTriangles());
 }
 
@@ -118,32 +119,34 @@ int infoWithoutHolding(const InfoArgs& a, const mpi::Group& g, const SceneOutlin
 int runInfo(const InfoArgs& a, const mpi::Group& g) {
   require(a.maxDepth >= 0 && a.maxDepth <= 32, "--max-depth", "must be in [0, 32]");
   require(a.leafSize >= 1, "--leaf-size", "must be >= 1");
-  methodNamed(a.method, "--method");
-  parseCompactBvh(a.bvh, "--bvh");
+  const Method& method = methodNamed(a.method, "--method");
+  regions::parseCompactBvh(a.bvh, "--bvh");
   require(a.ranks >= 1 && a.ranks <= 1 << 20, "--ranks", "must be in [1, 2^20]");
   require(a.regions <= 65536, "--regions", "must be in [0, 65536]");
-  require(parseDistribution(a.distribute, "--distribute") != Distribution::kAuto, "--distribute",
-          "info estimates replicate or data, not auto");
+  require(regions::parseDistribution(a.distribute, "--distribute") != regions::Distribution::kAuto,
+          "--distribute", "info estimates replicate or data, not auto");
   const bool talk = g.root() && !a.quiet;
-  const bool data = parseDistribution(a.distribute, "--distribute") == Distribution::kData;
+  const bool data =
+      regions::parseDistribution(a.distribute, "--distribute") == regions::Distribution::kData;
   Stopwatch clock;
   // Under data, as the ranks read it: a streamed scene once for its centres, a TOML scene's
   // streamed files and generators per file, never the whole scene held.
   if (const std::optional<ChunkedScene> chunked =
-          data ? openSharedStream(a.scene, a.method, !talk) : std::nullopt) {
+          data ? regions::openSharedStream(a.scene, method.samplesProceduralObjects(), !talk)
+               : std::nullopt) {
     SceneOutline outline;
-    const std::vector<uint64_t> held =
-        streamedTrianglesPerRank(*chunked, a.regions, partsFor(a.method), a.ranks, outline);
+    const std::vector<uint64_t> held = regions::streamedTrianglesPerRank(
+        *chunked, a.regions, regions::partsFor(method), a.ranks, outline);
     return infoWithoutHolding(a, g, outline, held,
                               "streamed: read once for its centres, never held", clock.seconds());
   }
   TomlOutline read =
-      data ? loadSceneDeferred(a.scene, !talk, !wholeProceduralFor(a.method)) : TomlOutline{};
+      data ? loadSceneDeferred(a.scene, !talk, !method.samplesProceduralObjects()) : TomlOutline{};
   if (read.read)
     return infoWithoutHolding(
         a, g, outlineOf(read.scene),
-        trianglesPerRank(read.scene, a.regions, partsFor(a.method), wholeProceduralFor(a.method),
-                         a.ranks, read.read),
+        regions::trianglesPerRank(read.scene, a.regions, regions::partsFor(method),
+                                  method.samplesProceduralObjects(), a.ranks, read.read),
         "its streamed files and generators read for their centres, never held", clock.seconds());
   const Scene scene = data ? std::move(read.scene) : loadScene(a.scene, !talk);
   const double loadSeconds = clock.lap();
@@ -171,7 +174,8 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   const SceneOutline outline = outlineOf(scene);
   nlohmann::json info = sceneSummary(outline);
   info["instances"] = 0;
-  for (const Node& n : scene.nodes) info["instances"] = info["instances"].get<uint64_t>() + n.instances.size();
+  for (const Node& n : scene.nodes)
+    info["instances"] = info["instances"].get<uint64_t>() + n.instances.size();
   info["octrees"] = octrees;
   const uint64_t held = scene.heldBytes();
   const double heldPerTriangle =
@@ -189,20 +193,24 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
   }
   std::printf("scene:      %s\n", scene.source.c_str());
   std::printf("triangles:  %llu unique, %llu expanded (%llu nodes, %llu instances)\n",
-              (unsigned long long)scene.uniqueTriangles(), (unsigned long long)scene.expandedTriangles(),
-              (unsigned long long)scene.nodes.size(), (unsigned long long)info["instances"].get<uint64_t>());
-  std::printf("nesting:    %d instance levels (at most %d)\n", scene.instanceDepth, kMaxInstanceDepth);
+              (unsigned long long)scene.uniqueTriangles(),
+              (unsigned long long)scene.expandedTriangles(), (unsigned long long)scene.nodes.size(),
+              (unsigned long long)info["instances"].get<uint64_t>());
+  std::printf("nesting:    %d instance levels (at most %d)\n", scene.instanceDepth,
+              kMaxInstanceDepth);
   printDroppedAndBounds(outline);
   // A line per octree for the first few; the rest only in the JSON and the memory total.
   constexpr size_t kListed = 6;
   for (size_t i = 0; i < std::min(octrees.size(), kListed); ++i) {
     const auto& o = octrees[i];
-    std::printf("octree %-12s %llu nodes, %llu leaves, depth %d, %.1f mean / %llu max entries per leaf, "
-                "%.1f MB, %.2f s\n",
-                o["node"].get<std::string>().c_str(), (unsigned long long)o["nodes"].get<uint64_t>(),
-                (unsigned long long)o["leaves"].get<uint64_t>(), o["max_depth"].get<int>(),
-                o["mean_leaf_entries"].get<double>(), (unsigned long long)o["max_leaf_entries"].get<uint64_t>(),
-                o["memory_bytes"].get<double>() / 1e6, o["build_seconds"].get<double>());
+    std::printf(
+        "octree %-12s %llu nodes, %llu leaves, depth %d, %.1f mean / %llu max entries per leaf, "
+        "%.1f MB, %.2f s\n",
+        o["node"].get<std::string>().c_str(), (unsigned long long)o["nodes"].get<uint64_t>(),
+        (unsigned long long)o["leaves"].get<uint64_t>(), o["max_depth"].get<int>(),
+        o["mean_leaf_entries"].get<double>(),
+        (unsigned long long)o["max_leaf_entries"].get<uint64_t>(),
+        o["memory_bytes"].get<double>() / 1e6, o["build_seconds"].get<double>());
   }
   if (octrees.size() > kListed)
     std::printf("  ... and %zu more octrees (--json lists them all)\n", octrees.size() - kListed);

@@ -1,11 +1,13 @@
 #include "src/cli/judge.hpp"
 
 #include "src/cli/methods.hpp"
+#include "src/regions/part_renderer.hpp"
 #include "src/core/timer.hpp"
 
 namespace lzb {
 
-Judge makeJudge(const std::string& name, const Scene& scene, const RenderOptions& options, bool root) {
+Judge makeJudge(const std::string& name, const Scene& scene, const RenderOptions& options,
+                bool root) {
   Judge judge;
   judge.reference = methodNamed(name, "--reference").create(scene, options);
   // Built once (set-up time), unless the raycast reference lends its Embree scene.
@@ -13,18 +15,19 @@ Judge makeJudge(const std::string& name, const Scene& scene, const RenderOptions
   return judge;
 }
 
-Judge makePartJudge(const std::string& name, const HeldShare& held, const RenderOptions& options) {
+Judge makePartJudge(const std::string& name, const regions::HeldShare& held,
+                    const RenderOptions& options) {
   const Method& method = methodNamed(name, "--reference");
   std::vector<std::unique_ptr<Renderer>> inner;
   std::vector<const Renderer*> lent;
-  for (const ScenePart& part : held.parts) {
+  for (const regions::ScenePart& part : held.parts) {
     inner.push_back(part.scene.expandedTriangles() > 0 ? method.create(part.scene, options)
                                                        : nullptr);
     lent.push_back(inner.back().get());
   }
   Judge judge;
-  judge.parts = std::make_unique<PartWitness>(held, lent, options);
-  judge.reference = makePartRenderer(held, std::move(inner), name);
+  judge.parts = std::make_unique<regions::PartWitness>(held, lent, options);
+  judge.reference = regions::makePartRenderer(held, std::move(inner), name);
   return judge;
 }
 
@@ -43,7 +46,8 @@ ExactFrame renderReference(const mpi::FrameDriver& driver, const Judge& judge, c
   ExactFrame exact;
   Framebuffer centres;
   const nlohmann::json stats = driver.render(*judge.reference, camera, f, centres);
-  exact.samples = renderSubsamples(driver, *judge.reference, camera, f, centres, exact.subsampleSeconds);
+  exact.samples =
+      renderSubsamples(driver, *judge.reference, camera, f, centres, exact.subsampleSeconds);
   if (driver.group().root()) exact.centreSeconds = stats["seconds"].get<double>();
   return exact;
 }
@@ -62,12 +66,12 @@ Accuracy judgePartFrame(const Judge& judge, const mpi::Group& group, const Camer
                         std::vector<uint64_t>& raysPerRank) {
   Stopwatch clock;
   // First the pixels the 17 samples leave open, then their answers from every rank.
-  AskedWitness asked;
+  regions::AskedWitness asked;
   if (group.root()) compare(image, exact, &asked);
-  const std::vector<WitnessQuestion> questions = asked.questions();
+  const std::vector<regions::WitnessQuestion> questions = asked.questions();
   std::vector<uint8_t> proven = judge.parts->answer(group, camera, questions, raysPerRank);
   if (!group.root()) return {};
-  const AnsweredWitness answered(questions, std::move(proven));
+  const regions::AnsweredWitness answered(questions, std::move(proven));
   const Accuracy accuracy = compare(image, exact, &answered);
   seconds = clock.seconds();
   return accuracy;

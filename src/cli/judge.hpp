@@ -8,25 +8,27 @@
 
 #include "mpi/frame_driver.hpp"
 #include "raycast/exact/ray_witness.hpp"
-#include "src/cli/part_witness.hpp"
 #include "src/core/renderer.hpp"
 #include "src/image/metrics.hpp"
 #include "src/image/reference.hpp"
+#include "src/regions/part_witness.hpp"
 
 namespace lzb {
 
 struct Judge {
   std::unique_ptr<Renderer> reference;
-  std::unique_ptr<WitnessScene> witness;  // the root's only: it alone compares
-  std::unique_ptr<PartWitness> parts;     // --distribute data: every rank's, for its parts
+  std::unique_ptr<WitnessScene> witness;        // the root's only: it alone compares
+  std::unique_ptr<regions::PartWitness> parts;  // --distribute data: every rank's, for its parts
 };
 
 // The exact method `name` (checked by the caller) as a renderer and, where `root`, the witness's
 // Embree scene (built here unless the raycast reference lends its own).
-Judge makeJudge(const std::string& name, const Scene& scene, const RenderOptions& options, bool root);
+Judge makeJudge(const std::string& name, const Scene& scene, const RenderOptions& options,
+                bool root);
 // The same under --distribute data: the exact method on each of the rank's parts, composited as
 // the parts of any method are, and the witness scenes of its parts.
-Judge makePartJudge(const std::string& name, const HeldShare& held, const RenderOptions& options);
+Judge makePartJudge(const std::string& name, const regions::HeldShare& held,
+                    const RenderOptions& options);
 
 // Renders `exact` at the 4x4 sub-samples of `camera` (every rank its share) and reduces them with
 // its centre render `centres` at the root; elsewhere returns an empty frame. The 4W x 4H image

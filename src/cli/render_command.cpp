@@ -8,7 +8,6 @@
 #include "mpi/failure.hpp"
 #include "mpi/frame_driver.hpp"
 #include "mpi/watchdog.hpp"
-#include "src/cli/distribute.hpp"
 #include "src/cli/frame_record.hpp"
 #include "src/cli/frame_transfer.hpp"
 #include "src/cli/judge.hpp"
@@ -22,6 +21,8 @@
 #include "src/core/timer.hpp"
 #include "src/image/frame_io.hpp"
 #include "src/image/metrics.hpp"
+#include "src/regions/part_renderer.hpp"
+#include "src/regions/share.hpp"
 
 namespace lzb {
 
@@ -31,7 +32,8 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
   c.add_option("scene", a.scene,
                "mesh file (OBJ, PLY, OFF, STL, glTF, ...), scene.toml, or builtin:NAME?key=value")
       ->required();
-  c.add_option("--method,-m", a.method, "rendering method: " + methodNames())->capture_default_str();
+  c.add_option("--method,-m", a.method, "rendering method: " + methodNames())
+      ->capture_default_str();
   c.add_option("--quality", a.quality,
                "fast | balanced | exact: the method's preset along its measured speed-accuracy "
                "trade (runs/tradeoff); options given on the command line win; exact is the "
@@ -42,7 +44,8 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
                "one the reference sees at the pixel's centre or one of its 16 sub-samples, or "
                "when a ray through the pixel sees that triangle first (the ray witness; it "
                "traces the raycast reference's Embree scene, else one built at set-up; "
-               "src/image/README.md): " + methodNames(true) + "; width and height at most 4096");
+               "src/image/README.md): " +
+                   methodNames(true) + "; width and height at most 4096");
   c.add_flag("--subsamples", a.subsamples,
              "also render each frame at 4x4 sub-samples per pixel and store their triangle IDs "
              "and box-filtered colour in the EXR, making it a reference for `lzb compare` "
@@ -81,7 +84,8 @@ void addRenderOptions(CLI::App& c, RenderArgs& a) {
       ->capture_default_str();
   c.add_option("--threads,-t", a.threads, "threads per rank (0: the cores this rank owns)")
       ->capture_default_str();
-  c.add_option("--seed", a.seed, "seed of all randomness (runs repeat exactly)")->capture_default_str();
+  c.add_option("--seed", a.seed, "seed of all randomness (runs repeat exactly)")
+      ->capture_default_str();
   c.add_option("--width", a.width, "image width (default: the scene file's, else 640)")
       ->check(CLI::Range(1, 16384));
   c.add_option("--height", a.height, "image height (default: the scene file's, else 480)")
@@ -232,24 +236,24 @@ std::vector<int> shareFrames(const mpi::Group& g, std::vector<int> frames) {
 
 // --distribute data: the renderer of this rank's part (loadPlan cut it).
 std::unique_ptr<Renderer> createPartRenderer(const RenderArgs& a, const RenderPlan& plan) {
-  const HeldShare& held = plan.held;
+  const regions::HeldShare& held = plan.held;
   std::vector<std::unique_ptr<Renderer>> inner;
-  for (const ScenePart& part : held.parts)
+  for (const regions::ScenePart& part : held.parts)
     inner.push_back(part.scene.expandedTriangles() > 0
                         ? methodNamed(a.method, "--method").create(part.scene, plan.options)
                         : nullptr);
-  return makePartRenderer(held, std::move(inner), a.method);
+  return regions::makePartRenderer(held, std::move(inner), a.method);
 }
 
 // --distribute auto: data when the whole scene would not fit replicated on some rank (every rank
 // takes the same mode).
-Distribution resolveDistribution(const RenderArgs& a, const mpi::Group& g) {
-  const Distribution asked = parseDistribution(a.distribute, "--distribute");
-  if (asked != Distribution::kAuto) return asked;
+regions::Distribution resolveDistribution(const RenderArgs& a, const mpi::Group& g) {
+  const regions::Distribution asked = regions::parseDistribution(a.distribute, "--distribute");
+  if (asked != regions::Distribution::kAuto) return asked;
   int fits = 1;
   mpi::agree(g, [&] { fits = replicaFits(a) ? 1 : 0; });
   LZB_MPI_CALL(MPI_Allreduce(MPI_IN_PLACE, &fits, 1, MPI_INT, MPI_MIN, g.comm));
-  return fits ? Distribution::kReplicate : Distribution::kData;
+  return fits ? regions::Distribution::kReplicate : regions::Distribution::kData;
 }
 
 }  // namespace
@@ -271,28 +275,28 @@ int runRender(const RenderArgs& a, const mpi::Group& g, const std::string& comma
     if (g.root()) checkOutput(a.out);
   });
   const mpi::SubGroups groups(g, a.frameGroups);
-  const Distribution distribution = resolveDistribution(a, g);
+  const regions::Distribution distribution = resolveDistribution(a, g);
   mpi::agree(g, [&] {
-    loadPlan(a, talk, plan, WorkShare{groups.group().rank, groups.group().size}, distribution);
+    loadPlan(a, talk, plan, &groups.group(), distribution);
     Stopwatch setupClock;
-    if (distribution == Distribution::kData)
+    if (distribution == regions::Distribution::kData)
       renderer = createPartRenderer(a, plan);
     else
       renderer = methodNamed(a.method, "--method").create(plan.scene, plan.options);
     if (!a.reference.empty())
-      judge = distribution == Distribution::kData
+      judge = distribution == regions::Distribution::kData
                   ? makePartJudge(a.reference, plan.held, plan.options)
                   : makeJudge(a.reference, plan.scene, plan.options, groups.group().root());
     setupSeconds = setupClock.seconds();
   });
   FrameStats setupStats = renderer->setupStats();
-  if (distribution != Distribution::kData)  // a part renderer counts what its rank holds
+  if (distribution != regions::Distribution::kData)  // a part renderer counts what its rank holds
     setupStats.addCount("held_unique_triangles", double(plan.scene.uniqueTriangles()));
   const nlohmann::json methodSetup = mpi::gatherStats(g, setupStats);
   Report report(a, plan.options, g, plan.outline, plan.sceneLoaded, commandLine);
   report.setImageSize(plan.width, plan.height);
   report.setMethod(*renderer, judge.reference.get());
-  report.setDistribution(distribution == Distribution::kData ? "data" : "replicate");
+  report.setDistribution(distribution == regions::Distribution::kData ? "data" : "replicate");
   report.setSetup(plan.loadSeconds, setupSeconds, methodSetup);
   if (judge.witness)
     report.setWitness(judge.witness->sharedWithReference(), judge.witness->buildSeconds());

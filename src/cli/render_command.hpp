@@ -20,7 +20,7 @@ struct RenderArgs {
   std::string out = "out";
   std::string composite = "tiles";  // mpi/composite.hpp; the fastest in runs/composite
   int frameGroups = 1;                // frame-parallel batches
-  std::string distribute = "replicate";  // src/cli/distribute.hpp: replicate | data
+  std::string distribute = "replicate";  // src/regions/share.hpp: replicate | data
   std::string bvh = "fast";              // fast | compact: Embree's leaves (raycast, lzb, hybrid)
   uint32_t regions = 0;                  // --distribute data: 0 = from the scene's size
   int threads = 0;  // 0: the cores this rank owns

@@ -7,15 +7,16 @@
 #include <optional>
 
 #include "mpi/composite.hpp"
-#include "src/cli/distribute.hpp"
+#include "mpi/group.hpp"
 #include "src/cli/frame_record.hpp"
-#include "src/cli/memory_estimate.hpp"
 #include "src/cli/methods.hpp"
-#include "src/cli/streamed_share.hpp"
 #include "src/core/error.hpp"
 #include "src/core/system.hpp"
 #include "src/core/timer.hpp"
 #include "src/image/reference.hpp"
+#include "src/regions/memory_estimate.hpp"
+#include "src/regions/share.hpp"
+#include "src/regions/streamed_share.hpp"
 #include "src/scene/chunked_scene.hpp"
 #include "src/scene/load.hpp"
 
@@ -43,15 +44,18 @@ void checkSubsampleSizes(const RenderArgs& a, int width, int height) {
 uint64_t frameBytes(const RenderArgs& a, int width, int height) {
   uint64_t perPixel = kFrame;
   if (a.subsamples) perPixel += kReduced;
-  if (!a.reference.empty()) perPixel += kFrame + kFine + kReduced;
-  else if (a.subsamples) perPixel += kFine;
+  if (!a.reference.empty())
+    perPixel += kFrame + kFine + kReduced;
+  else if (a.subsamples)
+    perPixel += kFine;
   return perPixel * uint64_t(width) * uint64_t(height);
 }
 
 // Refuses, before any allocation, a frame this process cannot hold.
 void checkFrameMemory(const RenderArgs& a, int width, int height) {
   const std::string size = std::to_string(width) + "x" + std::to_string(height);
-  requireMemory(frameBytes(a, width, height), a.width || a.height ? "--width/--height" : "image size",
+  requireMemory(frameBytes(a, width, height),
+                a.width || a.height ? "--width/--height" : "image size",
                 "a " + size + " frame" + (a.reference.empty() ? "" : " with its --reference") +
                     (a.subsamples ? " and --subsamples" : ""));
 }
@@ -74,8 +78,8 @@ void validateRenderArgs(const RenderArgs& a) {
   require(a.stallTimeout >= 0.0 && a.stallTimeout <= 1e9, "--stall-timeout",
           "must be in [0, 1e9] seconds");
   mpi::parseCompositeStrategy(a.composite, "--composite");
-  parseCompactBvh(a.bvh, "--bvh");
-  if (parseDistribution(a.distribute, "--distribute") == Distribution::kData) {
+  regions::parseCompactBvh(a.bvh, "--bvh");
+  if (regions::parseDistribution(a.distribute, "--distribute") == regions::Distribution::kData) {
     require(!methodNamed(a.method, "--method").rendersFromStore(), "--distribute data",
             "cuts the scene into regions, each with structures of its own: a store (--tree) holds "
             "the whole scene's (leave out --tree to build each region's tree in memory)");
@@ -89,10 +93,10 @@ void validateRenderArgs(const RenderArgs& a) {
 void checkOutput(const std::string& out) {
   fs::path existing = fs::absolute(out);
   std::error_code ec;
-  while (!fs::exists(existing, ec) && existing.has_parent_path() && existing != existing.parent_path())
+  while (!fs::exists(existing, ec) && existing.has_parent_path() &&
+         existing != existing.parent_path())
     existing = existing.parent_path();
-  require(fs::is_directory(existing, ec), "--out " + out,
-          existing.string() + " is not a folder");
+  require(fs::is_directory(existing, ec), "--out " + out, existing.string() + " is not a folder");
   // A probe folder made and removed in the nearest existing ancestor.
   const fs::path probe = existing / (".lzb-write-probe." + std::to_string(::getpid()));
   const bool created = fs::create_directory(probe, ec);
@@ -117,9 +121,9 @@ namespace {
 // This rank's estimated peak holding `triangles` unique triangles: the method's structures and a
 // reference's.
 uint64_t rankPeakBytes(const RenderArgs& a, uint64_t triangles) {
-  const bool compact = parseCompactBvh(a.bvh, "--bvh");
-  return methodPeakBytes(a.method, triangles, compact) +
-         (a.reference.empty() ? 0 : methodPeakBytes(a.reference, triangles, compact));
+  const bool compact = regions::parseCompactBvh(a.bvh, "--bvh");
+  return regions::methodPeakBytes(a.method, triangles, compact) +
+         (a.reference.empty() ? 0 : regions::methodPeakBytes(a.reference, triangles, compact));
 }
 
 std::string holding(uint64_t triangles, const RenderArgs& a) {
@@ -140,40 +144,47 @@ void loadSceneOf(const RenderArgs& a, bool talk, RenderPlan& plan) {
     return;
   }
   if (const std::optional<ChunkedScene> chunked = openGeneratedScene(a.scene))
-    requireEstimate(rankPeakBytes(a, chunked->triangles), a.scene,
-                    "every rank " + holding(chunked->triangles, a),
-                    ": cut it across ranks with --distribute data");
+    regions::requireEstimate(rankPeakBytes(a, chunked->triangles), a.scene,
+                             "every rank " + holding(chunked->triangles, a),
+                             ": cut it across ranks with --distribute data");
   plan.scene = loadScene(a.scene, !talk);
   require(plan.scene.expandedTriangles() > 0, a.scene, "the scene has no triangles");
-  requireEstimate(rankPeakBytes(a, plan.scene.uniqueTriangles()), a.scene,
-                  "every rank " + holding(plan.scene.uniqueTriangles(), a));
+  regions::requireEstimate(rankPeakBytes(a, plan.scene.uniqueTriangles()), a.scene,
+                           "every rank " + holding(plan.scene.uniqueTriangles(), a));
   plan.outline = outlineOf(plan.scene);
 }
 
 // --distribute data: this rank's part, streamed where the scene can be, else cut from the loaded
 // scene; the outline stands for the whole (camera paths and clip planes come out alike). The
 // share is refused before its triangles are kept when it would not fit.
-void loadShareOf(const RenderArgs& a, bool talk, const WorkShare& share, RenderPlan& plan) {
-  const Parts layout = partsFor(a.method);
-  const auto refuse = [&](uint64_t triangles, const HeldShare& held) {
-    requireEstimate(rankPeakBytes(a, triangles), a.scene,
-                    "rank " + std::to_string(share.rank) + " of " + std::to_string(share.size) +
-                        " " + holding(triangles, a) + " (" + std::to_string(held.mine.size()) +
-                        " of " + std::to_string(held.regions) + " regions)",
-                    ": more ranks hold smaller shares");
+void loadShareOf(const RenderArgs& a, bool talk, const mpi::Group& group, RenderPlan& plan) {
+  const WorkShare share{group.rank, group.size};
+  const Method& method = methodNamed(a.method, "--method");
+  const regions::Parts layout = regions::partsFor(method);
+  const bool wholeProcedural = method.samplesProceduralObjects();
+  const auto refuse = [&](uint64_t triangles, const regions::HeldShare& held) {
+    regions::requireEstimate(rankPeakBytes(a, triangles), a.scene,
+                             "rank " + std::to_string(share.rank) + " of " +
+                                 std::to_string(share.size) + " " + holding(triangles, a) + " (" +
+                                 std::to_string(held.mine.size()) + " of " +
+                                 std::to_string(held.regions) + " regions)",
+                             ": more ranks hold smaller shares");
   };
-  if (const std::optional<ChunkedScene> chunked = openSharedStream(a.scene, a.method, !talk)) {
-    plan.held = holdStreamedShare(*chunked, a.regions, share, layout, plan.outline,
-                                  [&](const HeldShare& held) { refuse(held.triangles, held); });
+  const auto refuseHeld = [&](const regions::HeldShare& held) { refuse(held.triangles, held); };
+  if (const std::optional<ChunkedScene> chunked =
+          regions::openSharedStream(a.scene, wholeProcedural, !talk)) {
+    plan.held =
+        regions::holdStreamedShare(*chunked, a.regions, share, layout, plan.outline, refuseHeld);
   } else {
     // A TOML scene's streamed mesh files are read per region, never whole; the share is
     // refused before they are, as lzb info estimates it (a placed mesh held whole, so at most
     // the scene's unique triangles).
-    const TomlOutline whole = loadSceneDeferred(a.scene, !talk, !wholeProceduralFor(a.method));
-    plan.held = holdShare(whole.scene, a.regions, share, layout, wholeProceduralFor(a.method),
-                          whole.read, [&](const HeldShare& held) {
-                            refuse(std::min(held.triangles, whole.scene.uniqueTriangles()), held);
-                          });
+    const TomlOutline whole = loadSceneDeferred(a.scene, !talk, !wholeProcedural);
+    plan.held =
+        regions::holdShare(whole.scene, a.regions, share, layout, wholeProcedural, whole.read,
+                           [&](const regions::HeldShare& held) {
+                             refuse(std::min(held.triangles, whole.scene.uniqueTriangles()), held);
+                           });
     plan.outline = outlineOf(whole.scene);
   }
   plan.scene = sceneFromOutline(plan.outline);
@@ -187,11 +198,11 @@ bool replicaFits(const RenderArgs& a) {
   return !chunked || rankPeakBytes(a, chunked->triangles) <= usableMemoryBytes();
 }
 
-void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan, const WorkShare& share,
-              Distribution distribution) {
+void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan, const mpi::Group* group,
+              regions::Distribution distribution) {
   Stopwatch loadClock;
-  if (distribution == Distribution::kData)
-    loadShareOf(a, talk, share, plan);
+  if (distribution == regions::Distribution::kData)
+    loadShareOf(a, talk, *group, plan);
   else
     loadSceneOf(a, talk, plan);
   plan.loadSeconds = loadClock.seconds();
@@ -201,7 +212,7 @@ void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan, const WorkShare&
   plan.options.seed = a.seed;
   plan.options.quiet = !talk;
   plan.options.frameGroups = a.frameGroups;
-  plan.options.compactBvh = parseCompactBvh(a.bvh, "--bvh");
+  plan.options.compactBvh = regions::parseCompactBvh(a.bvh, "--bvh");
   useThreads(plan.options.threads);
 
   plan.width = a.width ? a.width : plan.scene.width.value_or(640);

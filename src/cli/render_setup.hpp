@@ -4,12 +4,13 @@
 #include <cstdint>
 #include <string>
 
-#include "src/cli/distribute.hpp"
+#include "mpi/group.hpp"
 #include "src/cli/render_command.hpp"
 #include "src/core/camera.hpp"
 #include "src/core/renderer.hpp"
 #include "src/core/scene.hpp"
 #include "src/core/scene_outline.hpp"
+#include "src/regions/share.hpp"
 
 namespace lzb {
 
@@ -38,22 +39,24 @@ struct RenderPlan {
   int frames = 1;
   CameraSpec base;
   double loadSeconds = 0.0;
-  HeldShare held;  // --distribute data: this rank's part (renderers keep a reference to it)
+  regions::HeldShare
+      held;  // --distribute data: this rank's part (renderers keep a reference to it)
   // The camera of frame f along the path of `frames` (scene keyframes, else a circle).
   Camera camera(int f) const;
 };
 
 // Loads a.scene into `plan` (in place: renderers keep a reference to the scene) unless the method
 // holds the scene itself and no --reference needs it (the method's outline then stands for it);
-// under --distribute data, only the part of rank share.rank of its frame group (PLY, OFF, OBJ and
-// builtin:landscape streamed, never held whole; the other scenes loaded whole and cut). Refuses
-// a scene or share whose estimated peak (memory_estimate.hpp) this rank cannot hold, before it
-// holds it where it can. Resolves the threads (useThreads), image size, clip planes and fov;
-// checks the first camera, the sub-sample size and the frame memory. Throws InputError.
-// distribution: kReplicate or kData (auto resolved by the caller).
-void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan,
-              const WorkShare& share = WorkShare{0, 1},
-              Distribution distribution = Distribution::kReplicate);
+// under --distribute data, only this rank's part of the scene, the regions dealt over `group`
+// (its frame group; collective there): a binary PLY of triangles read in slices by the group's
+// ranks (src/regions/sliced_share.hpp), PLY, OFF, OBJ and builtin:landscape streamed, never held
+// whole; the other scenes loaded whole and cut. Refuses a scene or share whose estimated peak
+// (memory_estimate.hpp) this rank cannot hold, before it holds it where it can. Resolves the
+// threads (useThreads), image size, clip planes and fov; checks the first camera, the sub-sample
+// size and the frame memory. Throws InputError. distribution: kReplicate or kData (auto resolved
+// by the caller; kData needs `group`).
+void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan, const mpi::Group* group = nullptr,
+              regions::Distribution distribution = regions::Distribution::kReplicate);
 
 // --distribute auto on this rank: whether the whole scene fits replicated. Only a streamed scene
 // (PLY, OFF, OBJ, builtin:landscape) is known before it is read; the others are read whole in

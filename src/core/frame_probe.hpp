@@ -1,6 +1,6 @@
 #pragma once
 // The frame's way (the hybrid's step 0, src/hybrid/README.md) decided for a whole data-parallel
-// frame (--distribute data, src/cli/distribute.hpp): every part casts the coarse rays and each
+// frame (--distribute data, src/regions/share.hpp): every part casts the coarse rays and each
 // ray's nearest hit is taken over the parts of every rank; every part counts what lies in front
 // of the probe's plane placed from those hits, and the counts are summed over the parts; every
 // part then draws the frame the one way chosen from the sums. Minima and integer sums do not

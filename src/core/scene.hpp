@@ -13,6 +13,7 @@
 //   childOffset(root, i1) + childOffset(node1, i2) + ... + t.
 // kNoId marks a pixel that shows no triangle.
 #include <cstdint>
+#include <functional>
 #include <glm/glm.hpp>
 #include <limits>
 #include <optional>
@@ -93,6 +94,10 @@ struct DeferredMesh {
   uint64_t triangles = 0;
   Bounds bounds;
 };
+// Reads the triangles of a node whose mesh is deferred: hands them to `out` in ID order, in
+// meshes of some triangles each, as the loaded scene's node holds them.
+using DeferredReader =
+    std::function<void(uint32_t node, const std::function<void(const Mesh&)>& out)>;
 
 struct Node {
   std::string name;
@@ -139,9 +144,9 @@ struct Scene {
   std::vector<Node> nodes;
   uint32_t root = 0;
   Light light;
-  std::optional<CameraSpec> camera;      // from a scene file or generator; else framed on bounds
-  std::vector<CameraSpec> keyframes;     // camera path from a scene file
-  std::optional<int> width, height;      // image size from a scene file
+  std::optional<CameraSpec> camera;   // from a scene file or generator; else framed on bounds
+  std::vector<CameraSpec> keyframes;  // camera path from a scene file
+  std::optional<int> width, height;   // image size from a scene file
   LoadStats stats;
 
   // Derived data; call finalize() after building or editing the graph.
@@ -154,14 +159,16 @@ struct Scene {
   int instanceDepth = 0;  // instances on the longest path from the root (set by finalize)
 
   const Node& rootNode() const { return nodes[root]; }
-  uint64_t uniqueTriangles() const;                 // stored once each
+  uint64_t uniqueTriangles() const;  // stored once each
   // What the model holds: the meshes' arrays (vertices, 3 indices and a colour a triangle) and
   // the instances with their ID offsets, as allocated.
   uint64_t heldBytes() const;
   uint64_t expandedTriangles() const { return expandedCount[root]; }
   const Bounds& bounds() const { return nodeBounds[root]; }
   // Offset of instance i's expanded list inside node n's expanded list.
-  uint64_t childOffset(uint32_t node, size_t instance) const { return instanceOffsets[node][instance]; }
+  uint64_t childOffset(uint32_t node, size_t instance) const {
+    return instanceOffsets[node][instance];
+  }
   uint32_t addNode(std::string name);
 
   // Which stored triangle an expanded ID names, and where (node frame -> world).

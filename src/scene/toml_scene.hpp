@@ -4,7 +4,6 @@
 #include <filesystem>
 
 #include "src/core/scene.hpp"
-#include "src/core/scene_part.hpp"
 
 namespace lzb {
 
@@ -19,7 +18,7 @@ Scene loadTomlScene(const std::filesystem::path& path);
 // sample their definitions) not read: their nodes are deferred (their count, and their bounds
 // from one pass) and `read` hands out their triangles, the loaded scene's in its ID order, as
 // often as asked. Other files and generators are loaded. For a rank's share under --distribute
-// data (src/cli/distribute.hpp).
+// data (src/regions/share.hpp).
 struct TomlOutline {
   Scene scene;
   DeferredReader read;

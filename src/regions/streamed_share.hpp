@@ -10,19 +10,19 @@
 #include <optional>
 #include <string>
 
-#include "src/cli/distribute.hpp"
 #include "src/core/scene_outline.hpp"
+#include "src/regions/share.hpp"
 #include "src/scene/chunked_scene.hpp"
 
-namespace lzb {
+namespace lzb::regions {
 
-// `spec` as the ranks read it under --distribute data for `method`: as chunks when it streams
-// (openChunkedScene), except a procedural object for a method that samples its definition, which
-// needs it loaded (nullopt then, as for a scene that does not stream).
-std::optional<ChunkedScene> openSharedStream(const std::string& spec, const std::string& method,
+// `spec` as the ranks read it under --distribute data: as chunks when it streams
+// (openChunkedScene), except a procedural object for a method that samples its definition
+// (wholeProcedural), which needs it loaded (nullopt then, as for a scene that does not stream).
+std::optional<ChunkedScene> openSharedStream(const std::string& spec, bool wholeProcedural,
                                              bool quiet);
 
-// This rank's share of `scene` cut into `regions` regions (0: defaultRegions) in parts of
+// This rank's share of `scene` cut into `regions` regions (0: the default, regionCount) in parts of
 // `layout`, and the whole scene's outline. beforeKeeping(held) runs once the regions are dealt,
 // before any triangle is kept (to refuse a share that would not fit). Throws InputError when the
 // centres would not fit in memory, or as the reader does (a file changed between the passes).
@@ -35,4 +35,4 @@ HeldShare holdStreamedShare(const ChunkedScene& scene, uint32_t regions, const W
 std::vector<uint64_t> streamedTrianglesPerRank(const ChunkedScene& scene, uint32_t regions,
                                                Parts layout, int ranks, SceneOutline& outline);
 
-}  // namespace lzb
+}  // namespace lzb::regions

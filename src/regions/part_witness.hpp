@@ -18,10 +18,10 @@
 
 #include "mpi/group.hpp"
 #include "raycast/exact/ray_witness.hpp"
-#include "src/cli/distribute.hpp"
 #include "src/image/witness.hpp"
+#include "src/regions/share.hpp"
 
-namespace lzb {
+namespace lzb::regions {
 
 // A pixel and the triangle (the whole scene's ID) a test image shows there.
 struct WitnessQuestion {
@@ -76,4 +76,4 @@ class AnsweredWitness : public VisibilityWitness {
   std::vector<uint8_t> proven_;
 };
 
-}  // namespace lzb
+}  // namespace lzb::regions

@@ -1,11 +1,11 @@
-#include "src/core/scene_part.hpp"
+#include "src/regions/scene_part.hpp"
 
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <set>
 
-namespace lzb {
+namespace lzb::regions {
 namespace {
 
 // A root with 4 triangles of its own and 3 instances of a 2-triangle mesh, one of them through
@@ -184,4 +184,4 @@ TEST(ScenePart, AnEmptyPartHoldsNothing) {
 }
 
 }  // namespace
-}  // namespace lzb
+}  // namespace lzb::regions

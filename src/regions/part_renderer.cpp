@@ -1,4 +1,4 @@
-#include "src/cli/distribute.hpp"
+#include "src/regions/part_renderer.hpp"
 
 #include <algorithm>
 #include <array>
@@ -6,122 +6,11 @@
 
 #include "mpi/decomposition.hpp"
 #include "mpi/frame_tiles.hpp"
-#include "src/cli/methods.hpp"
-#include "src/core/error.hpp"
 #include "src/core/frame_probe.hpp"
 #include "src/core/shading.hpp"
 #include "src/core/timer.hpp"
 
-namespace lzb {
-
-Distribution parseDistribution(const std::string& text, const std::string& field) {
-  if (text == "replicate") return Distribution::kReplicate;
-  if (text == "data") return Distribution::kData;
-  if (text == "auto") return Distribution::kAuto;
-  throw InputError(field + ": unknown distribution '" + text + "' (replicate | data | auto)");
-}
-
-uint32_t defaultRegions(uint64_t uniqueTriangles, Parts layout) {
-  const int shift = layout == Parts::kOne ? 16 : 20;
-  return uint32_t(std::clamp<uint64_t>(uniqueTriangles >> shift, 16, 4096));
-}
-
-namespace {
-
-// Each region's triangles, the units' (triangles: empty, one each) summed by their region.
-std::vector<uint64_t> trianglesOfRegions(const std::vector<uint32_t>& regionOf,
-                                         std::span<const uint64_t> triangles, uint32_t regions) {
-  std::vector<uint64_t> sum(regions, 0);
-  for (size_t u = 0; u < regionOf.size(); ++u)
-    sum[regionOf[u]] += triangles.empty() ? 1 : triangles[u];
-  return sum;
-}
-
-}  // namespace
-
-PartOf partOfRank(std::span<const glm::dvec3> centres, std::span<const uint64_t> triangles,
-                  HeldShare& held, const WorkShare& share, Parts layout) {
-  const std::vector<uint32_t> regionOf = splitIntoRegions(centres, triangles, held.regions);
-  const std::vector<uint64_t> regionTriangles =
-      trianglesOfRegions(regionOf, triangles, held.regions);
-  held.mine = regionsOfRank(regionTriangles, share);
-  held.layout = layout;
-  std::sort(held.mine.begin(), held.mine.end());
-  for (uint32_t r : held.mine) held.triangles += regionTriangles[r];
-  std::vector<uint32_t> partOfRegion(held.regions, kNoPart);
-  for (size_t k = 0; k < held.mine.size(); ++k)
-    partOfRegion[held.mine[k]] = layout == Parts::kOne ? 0 : uint32_t(k);
-  PartOf partOf(regionOf.size());
-  for (size_t u = 0; u < regionOf.size(); ++u) partOf[u] = partOfRegion[regionOf[u]];
-  return partOf;
-}
-
-Parts partsFor(const std::string& method) {
-  return methodNamed(method, "--method").exact() ? Parts::kOne : Parts::kPerRegion;
-}
-
-bool wholeProceduralFor(const std::string& method) {
-  return methodNamed(method, "--method").samplesProceduralObjects();
-}
-
-uint32_t partCount(const HeldShare& held, Parts layout) {
-  return layout == Parts::kOne ? 1 : uint32_t(held.mine.size());
-}
-
-namespace {
-
-// The units' world centres and (when some are instances) triangles, as the cut weighs them.
-struct WeightedUnits {
-  std::vector<glm::dvec3> centres;
-  std::vector<uint64_t> triangles;  // empty: one each (only the main mesh's triangles)
-};
-WeightedUnits weigh(const Scene& whole, const SceneUnits& units, const DeferredReader& read = {}) {
-  WeightedUnits w;
-  units.centres(whole, w.centres, read);
-  if (!units.opened.empty())
-    for (size_t u = 0; u < units.size(); ++u) w.triangles.push_back(units.triangles(u));
-  return w;
-}
-
-}  // namespace
-
-std::vector<uint64_t> trianglesPerRank(const Scene& whole, uint32_t regions, Parts layout,
-                                       bool wholeProcedural, int ranks,
-                                       const DeferredReader& read) {
-  if (!regions) regions = defaultRegions(whole.uniqueTriangles(), layout);
-  const SceneUnits units = sceneUnits(whole, regions, wholeProcedural);
-  const WeightedUnits w = weigh(whole, units, read);
-  return trianglesPerRank(w.centres, w.triangles, regions, ranks);
-}
-
-std::vector<uint64_t> trianglesPerRank(std::span<const glm::dvec3> centres,
-                                       std::span<const uint64_t> triangles, uint32_t regions,
-                                       int ranks) {
-  const std::vector<uint64_t> regionTriangles =
-      trianglesOfRegions(splitIntoRegions(centres, triangles, regions), triangles, regions);
-  std::vector<uint64_t> held(size_t(ranks), 0);
-  for (int r = 0; r < ranks; ++r)
-    for (uint32_t region : regionsOfRank(regionTriangles, WorkShare{r, ranks}))
-      held[size_t(r)] += regionTriangles[region];
-  return held;
-}
-
-HeldShare holdShare(const Scene& whole, uint32_t regions, const WorkShare& share, Parts layout,
-                    bool wholeProcedural, const DeferredReader& read,
-                    const std::function<void(const HeldShare&)>& beforeKeeping) {
-  HeldShare held;
-  held.regions = regions ? regions : defaultRegions(whole.uniqueTriangles(), layout);
-  const SceneUnits units = sceneUnits(whole, held.regions, wholeProcedural);
-  held.units = units.size();
-  PartOf partOf;
-  {
-    const WeightedUnits w = weigh(whole, units, read);
-    partOf = partOfRank(w.centres, w.triangles, held, share, layout);
-  }
-  if (beforeKeeping) beforeKeeping(held);
-  held.parts = cutScene(whole, units, partOf, partCount(held, layout), read);
-  return held;
-}
+namespace lzb::regions {
 
 namespace {
 
@@ -371,4 +260,4 @@ std::unique_ptr<Renderer> makePartRenderer(const HeldShare& held,
   return std::make_unique<PartRenderer>(held, std::move(inner), method);
 }
 
-}  // namespace lzb
+}  // namespace lzb::regions

@@ -1,11 +1,11 @@
-#include "src/cli/memory_estimate.hpp"
+#include "src/regions/memory_estimate.hpp"
 
 #include <map>
 
 #include "src/core/error.hpp"
 #include "src/core/system.hpp"
 
-namespace lzb {
+namespace lzb::regions {
 
 namespace {
 
@@ -57,4 +57,4 @@ void requireEstimate(uint64_t bytes, const std::string& scene, const std::string
                    hint);
 }
 
-}  // namespace lzb
+}  // namespace lzb::regions

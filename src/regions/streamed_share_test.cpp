@@ -2,7 +2,7 @@
 // recentred far from it), generated (builtin:landscape), or a TOML scene's streamed mesh files
 // read per region, is the share cut from the loaded scene: the same regions, units, IDs, world
 // triangles, colours, normals and node boxes, and the same outline.
-#include "src/cli/streamed_share.hpp"
+#include "src/regions/streamed_share.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 #include "tests/support/ply_files.hpp"
 #include "tests/support/text_meshes.hpp"
 
-namespace lzb {
+namespace lzb::regions {
 namespace {
 
 void expectSameOutline(const SceneOutline& a, const SceneOutline& b) {
@@ -255,4 +255,4 @@ TEST(StreamedShare, OtherScenesAreNotStreamed) {
 }
 
 }  // namespace
-}  // namespace lzb
+}  // namespace lzb::regions

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-namespace lzb {
+namespace lzb::regions {
 
 // The peak of `method` holding `triangles` unique triangles, frame buffers excluded; with
 // compactBvh (`--bvh compact`), Embree's compact leaves for the methods that build its BVH.
@@ -19,7 +19,7 @@ bool parseCompactBvh(const std::string& value, const std::string& where);
 bool hasMemoryModel(const std::string& method);
 
 // What a streamed cut holds while it deals the regions: the world centre and the part index of
-// each of the scene's `triangles` (src/cli/streamed_share.hpp).
+// each of the scene's `triangles` (src/regions/streamed_share.hpp).
 uint64_t streamedCutBytes(uint64_t triangles);
 
 // Throws InputError "<scene>: <what> needs an estimated N MiB, more than the M MiB this process
@@ -28,4 +28,4 @@ uint64_t streamedCutBytes(uint64_t triangles);
 void requireEstimate(uint64_t bytes, const std::string& scene, const std::string& what,
                      const std::string& hint = "");
 
-}  // namespace lzb
+}  // namespace lzb::regions

@@ -19,8 +19,9 @@
 #include <vector>
 
 #include "src/core/scene.hpp"
+#include "src/core/scene_outline.hpp"
 
-namespace lzb {
+namespace lzb::regions {
 
 // Expanded IDs of a part, mapped to the whole scene's in runs of consecutive IDs.
 class IdMap {
@@ -42,22 +43,17 @@ class IdMap {
   uint64_t size_ = 0;
 };
 
-// Reads the triangles of a node whose mesh is deferred (Node::deferred): hands them to `out` in
-// ID order, in meshes of some triangles each, as the loaded scene's node holds them.
-using DeferredReader =
-    std::function<void(uint32_t node, const std::function<void(const Mesh&)>& out)>;
-
 // One unit beyond the root's own triangles: the instance chain from the root (instance indices,
 // node by node) to the node it names, and whether it is that instance's whole subtree or the
 // node's own mesh.
 struct SceneUnit {
   std::vector<uint32_t> path;
   bool subtree = true;
-  uint64_t idBase = 0;     // the whole scene's ID of its first triangle
-  uint64_t triangles = 0;  // expanded
-  glm::dvec3 centre{0.0};  // world position: its box's centre (not split)
-  bool split = false;      // the node's own mesh cut into its triangles: `triangles` units
-  uint64_t firstUnit = 0;  // the index of its (first) unit among all units
+  uint64_t idBase = 0;      // the whole scene's ID of its first triangle
+  uint64_t triangles = 0;   // expanded
+  glm::dvec3 centre{0.0};   // world position: its box's centre (not split)
+  bool split = false;       // the node's own mesh cut into its triangles: `triangles` units
+  uint64_t firstUnit = 0;   // the index of its (first) unit among all units
   glm::dmat4 toWorld{1.0};  // split: the node's frame -> world (its triangles' centroids)
 };
 
@@ -113,8 +109,17 @@ void keepMainMeshTriangles(const Mesh& from, uint64_t firstId, const PartOf& par
 void reserveKept(const PartOf& partOf, uint64_t count, uint32_t meshNode,
                  std::vector<ScenePart>& parts);
 
+// A part of a scene that is one mesh (a file or a generator read in chunks or slices): its frame,
+// the root holding the triangles or placing by `placement` the recentred node that does, as the
+// loader makes it; returns the node the triangles go to.
+uint32_t startMeshPart(const SceneOutline& outline, const glm::dmat4& placement, Scene& s);
+// Finalises such a part; one holding triangles keeps the whole scene's boxes (its node's own box
+// `nodeBox` and the outline's), as cutScene keeps them: Embree places positions relative to them.
+void finishMeshPart(const SceneOutline& outline, uint32_t meshNode, const Bounds& nodeBox,
+                    Scene& s);
+
 // The world centre of triangle t of `mesh` placed by `toWorld`: a main-mesh unit's centre, the
-// same whether the mesh was loaded whole or is streamed (src/cli/streamed_share.hpp).
+// same whether the mesh was loaded whole or is streamed (src/regions/streamed_share.hpp).
 glm::dvec3 placedCentroid(const Mesh& mesh, size_t t, const glm::dmat4& toWorld);
 
-}  // namespace lzb
+}  // namespace lzb::regions

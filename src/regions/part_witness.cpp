@@ -1,4 +1,4 @@
-#include "src/cli/part_witness.hpp"
+#include "src/regions/part_witness.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -6,7 +6,7 @@
 
 #include "raycast/exact/raycast_renderer.hpp"
 
-namespace lzb {
+namespace lzb::regions {
 
 namespace {
 
@@ -100,7 +100,8 @@ std::vector<uint8_t> PartWitness::answer(const mpi::Group& group, const Camera& 
   const int made = int(mine.size());
   std::vector<int> counts(size_t(group.size)), offsets(size_t(group.size), 0);
   LZB_MPI_CALL(MPI_Allgather(&made, 1, MPI_INT, counts.data(), 1, MPI_INT, group.comm));
-  for (int r = 1; r < group.size; ++r) offsets[size_t(r)] = offsets[size_t(r) - 1] + counts[size_t(r) - 1];
+  for (int r = 1; r < group.size; ++r)
+    offsets[size_t(r)] = offsets[size_t(r) - 1] + counts[size_t(r) - 1];
   std::vector<WitnessRay> rays(size_t(offsets.back() + counts.back()));
   MPI_Datatype rayType = bytesType(sizeof(WitnessRay));
   LZB_MPI_CALL(MPI_Allgatherv(mine.data(), made, rayType, rays.data(), counts.data(),
@@ -109,7 +110,8 @@ std::vector<uint8_t> PartWitness::answer(const mpi::Group& group, const Camera& 
   if (group.root()) raysPerRank.assign(counts.begin(), counts.end());
 
   // Each ray's nearest hit through this rank's parts, then over the ranks.
-  std::vector<NearestHit> hits(rays.size(), NearestHit{std::numeric_limits<double>::infinity(), kNoId});
+  std::vector<NearestHit> hits(rays.size(),
+                               NearestHit{std::numeric_limits<double>::infinity(), kNoId});
   const long n = long(rays.size());
 #pragma omp parallel for schedule(dynamic, 64) num_threads(threads_)
   for (long i = 0; i < n; ++i) {
@@ -151,7 +153,8 @@ std::vector<WitnessQuestion> AskedWitness::questions() const {
   return q;
 }
 
-AnsweredWitness::AnsweredWitness(std::vector<WitnessQuestion> questions, std::vector<uint8_t> proven)
+AnsweredWitness::AnsweredWitness(std::vector<WitnessQuestion> questions,
+                                 std::vector<uint8_t> proven)
     : questions_(std::move(questions)), proven_(std::move(proven)) {}
 
 bool AnsweredWitness::visibleInPixel(int x, int y, uint64_t id) const {
@@ -160,4 +163,4 @@ bool AnsweredWitness::visibleInPixel(int x, int y, uint64_t id) const {
   return at != questions_.end() && !before(q, *at) && proven_[size_t(at - questions_.begin())];
 }
 
-}  // namespace lzb
+}  // namespace lzb::regions

@@ -1,4 +1,4 @@
-#include "src/core/scene_part.hpp"
+#include "src/regions/scene_part.hpp"
 
 #include <absl/container/flat_hash_map.h>
 
@@ -7,7 +7,7 @@
 #include <queue>
 #include <stdexcept>
 
-namespace lzb {
+namespace lzb::regions {
 
 void IdMap::add(uint64_t global, uint64_t count) {
   if (count == 0) return;
@@ -221,6 +221,25 @@ void keepMainMeshTriangles(const Mesh& from, uint64_t firstId, const PartOf& par
       from, firstId, firstId, partOf, [meshNode](uint32_t) { return meshNode; }, parts);
 }
 
+uint32_t startMeshPart(const SceneOutline& outline, const glm::dmat4& placement, Scene& s) {
+  s.source = outline.source;
+  s.camera = outline.camera;
+  s.stats = outline.stats;
+  s.root = s.addNode(outline.source);
+  if (placement == glm::dmat4(1.0)) return s.root;
+  const uint32_t mesh = s.addNode(outline.source + "/recentred");
+  s.nodes[s.root].instances.push_back({mesh, placement});
+  return mesh;
+}
+
+void finishMeshPart(const SceneOutline& outline, uint32_t meshNode, const Bounds& nodeBox,
+                    Scene& s) {
+  s.finalize();
+  if (s.expandedTriangles() == 0) return;
+  s.nodeBounds[meshNode] = nodeBox;
+  s.nodeBounds[s.root] = outline.bounds;
+}
+
 glm::dvec3 placedCentroid(const Mesh& mesh, size_t t, const glm::dmat4& toWorld) {
   const glm::dvec3 c = (glm::dvec3(mesh.vertex(t, 0)) + glm::dvec3(mesh.vertex(t, 1)) +
                         glm::dvec3(mesh.vertex(t, 2))) /
@@ -319,7 +338,8 @@ SceneUnits sceneUnits(const Scene& scene, uint32_t regions, bool wholeProcedural
     open.erase(open.begin());  // the main mesh: its triangles, one unit each
   }
   const uint64_t limit = std::max<uint64_t>(1, scene.expandedTriangles() / (8 * uint64_t(regions)));
-  std::priority_queue<OpenableUnit, std::vector<OpenableUnit>, Larger> queue(Larger{}, std::move(open));
+  std::priority_queue<OpenableUnit, std::vector<OpenableUnit>, Larger> queue(Larger{},
+                                                                             std::move(open));
   size_t opened = 0;
   const std::vector<bool> once = placedOnce(scene);
   while (!queue.empty()) {
@@ -431,4 +451,4 @@ std::vector<ScenePart> cutScene(const Scene& whole, const SceneUnits& units, con
   return cut;
 }
 
-}  // namespace lzb
+}  // namespace lzb::regions

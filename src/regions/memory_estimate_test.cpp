@@ -1,6 +1,6 @@
 // Every method has a measured memory model, and an estimate beyond the usable memory is refused
 // with the scene's name and the estimate.
-#include "src/cli/memory_estimate.hpp"
+#include "src/regions/memory_estimate.hpp"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include "src/core/method.hpp"
 #include "src/core/system.hpp"
 
-namespace lzb {
+namespace lzb::regions {
 namespace {
 
 TEST(MemoryEstimate, EveryRegisteredMethodHasAMeasuredModel) {
@@ -66,4 +66,4 @@ TEST(MemoryEstimate, RanksOnOneMachineShareItsMemory) {
 }
 
 }  // namespace
-}  // namespace lzb
+}  // namespace lzb::regions

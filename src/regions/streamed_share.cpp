@@ -1,10 +1,10 @@
-#include "src/cli/streamed_share.hpp"
+#include "src/regions/streamed_share.hpp"
 
 #include <vector>
 
-#include "src/cli/memory_estimate.hpp"
+#include "src/regions/memory_estimate.hpp"
 
-namespace lzb {
+namespace lzb::regions {
 
 namespace {
 
@@ -23,18 +23,6 @@ std::vector<glm::dvec3> centresOf(const ChunkedScene& scene, Bounds& box, SceneO
   return centres;
 }
 
-// The part's frame: the root, holding the triangles or placing the recentred node that does.
-uint32_t partSkeleton(const ChunkedScene& scene, const SceneOutline& outline, Scene& s) {
-  s.source = outline.source;
-  s.camera = outline.camera;
-  s.stats = outline.stats;
-  s.root = s.addNode(outline.source);
-  if (scene.placement == glm::dmat4(1.0)) return s.root;
-  const uint32_t mesh = s.addNode(outline.source + "/recentred");
-  s.nodes[s.root].instances.push_back({mesh, scene.placement});
-  return mesh;
-}
-
 // Pass 2: the kept triangles, with the whole scene's IDs.
 void keepTriangles(const ChunkedScene& scene, const PartOf& partOf, uint32_t meshNode,
                    std::vector<ScenePart>& parts) {
@@ -48,10 +36,10 @@ void keepTriangles(const ChunkedScene& scene, const PartOf& partOf, uint32_t mes
 
 }  // namespace
 
-std::optional<ChunkedScene> openSharedStream(const std::string& spec, const std::string& method,
+std::optional<ChunkedScene> openSharedStream(const std::string& spec, bool wholeProcedural,
                                              bool quiet) {
   std::optional<ChunkedScene> chunked = openChunkedScene(spec, quiet);
-  if (chunked && chunked->procedural && wholeProceduralFor(method)) chunked.reset();
+  if (chunked && chunked->procedural && wholeProcedural) chunked.reset();
   return chunked;
 }
 
@@ -59,8 +47,8 @@ std::vector<uint64_t> streamedTrianglesPerRank(const ChunkedScene& scene, uint32
                                                Parts layout, int ranks, SceneOutline& outline) {
   Bounds box;
   const std::vector<glm::dvec3> centres = centresOf(scene, box, outline);
-  if (!regions) regions = defaultRegions(outline.uniqueTriangles, layout);
-  return trianglesPerRank(centres, {}, regions, ranks);
+  regions = regionCount(regions, outline.uniqueTriangles, layout == Parts::kOne);
+  return trianglesPerRank(cutIntoRegions(centres, {}, regions).regionTriangles, ranks);
 }
 
 HeldShare holdStreamedShare(const ChunkedScene& scene, uint32_t regions, const WorkShare& share,
@@ -71,24 +59,17 @@ HeldShare holdStreamedShare(const ChunkedScene& scene, uint32_t regions, const W
   Bounds nodeBox;
   {
     const std::vector<glm::dvec3> centres = centresOf(scene, nodeBox, outline);
-    held.regions = regions ? regions : defaultRegions(outline.uniqueTriangles, layout);
+    held.regions = regionCount(regions, outline.uniqueTriangles, layout == Parts::kOne);
     held.units = centres.size();
-    partOf = partOfRank(centres, {}, held, share, layout);
+    partOf = partOfRank(cutIntoRegions(centres, {}, held.regions), held, share, layout);
   }
   if (beforeKeeping) beforeKeeping(held);
   held.parts.resize(partCount(held, layout));
   uint32_t meshNode = 0;
-  for (ScenePart& part : held.parts) meshNode = partSkeleton(scene, outline, part.scene);
+  for (ScenePart& part : held.parts) meshNode = startMeshPart(outline, scene.placement, part.scene);
   keepTriangles(scene, partOf, meshNode, held.parts);
-  for (ScenePart& part : held.parts) {
-    part.scene.finalize();
-    // The whole scene's boxes, as cutScene keeps them (Embree places positions relative to them).
-    if (part.scene.expandedTriangles() > 0) {
-      part.scene.nodeBounds[meshNode] = nodeBox;
-      part.scene.nodeBounds[part.scene.root] = outline.bounds;
-    }
-  }
+  for (ScenePart& part : held.parts) finishMeshPart(outline, meshNode, nodeBox, part.scene);
   return held;
 }
 
-}  // namespace lzb
+}  // namespace lzb::regions
