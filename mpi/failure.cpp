@@ -12,7 +12,9 @@
 
 namespace lzb::mpi {
 
-int statusOf(const std::exception& e) { return dynamic_cast<const InputError*>(&e) ? 2 : 1; }
+int statusOf(const std::exception& e) {
+  return dynamic_cast<const InputError*>(&e) ? 2 : 1;
+}
 
 std::string messageOf(const std::exception& e) {
   return (statusOf(e) == 2 ? "error: " : "internal error: ") + std::string(e.what());
@@ -29,7 +31,8 @@ int agreeOnStatus(const Group& g, int mine) {
     LZB_MPI_CALL(MPI_Wait(&request, MPI_STATUS_IGNORE));
     return worst;
   }
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(kAgreeSeconds);
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(kAgreeSeconds);
   for (;;) {
     int done = 0;
     LZB_MPI_CALL(MPI_Test(&request, &done, MPI_STATUS_IGNORE));
@@ -46,13 +49,15 @@ void agree(const Group& g, const std::function<void()>& step) {
   std::string message;
   try {
     step();
+  } catch (const JobFailed& e) {
+    status = e.status;  // a step agreed on inside this one: its message is printed already
   } catch (const std::exception& e) {
     status = statusOf(e);
     message = messageOf(e);
   }
   if (g.size == 1) {
     if (status == 0) return;
-    std::fprintf(stderr, "lzb: %s\n", message.c_str());
+    if (!message.empty()) std::fprintf(stderr, "lzb: %s\n", message.c_str());
     throw JobFailed(status);
   }
   const int worst = agreeOnStatus(g, status);

@@ -31,7 +31,8 @@ int statusOf(const std::exception& e);
 // The one-line message lzb prints for an exception (without the "lzb: " prefix).
 std::string messageOf(const std::exception& e);
 
-// Runs step() on this rank and agrees with every rank on the outcome (see above).
+// Runs step() on this rank and agrees with every rank on the outcome (see above). Steps nest: a
+// step agreed on inside step() (its JobFailed) fails this one with its status, printed once.
 void agree(const Group& g, const std::function<void()>& step);
 
 // Prints this rank's message and ends every rank of a multi-rank job (MPI_Abort with the status).

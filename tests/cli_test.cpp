@@ -386,6 +386,27 @@ TEST(Info, EstimatesEachRanksPeakForItsShare) {
   EXPECT_EQ(runLzb(scene + "--distribute auto").status, 2);
 }
 
+// A binary PLY of triangles is read in slices under data: each rank's estimate holds its slice's
+// load, which falls as ranks are added, and its peak is never below it.
+TEST(Info, EstimatesTheLoadOfASliceReadFilePerRank) {
+  const fs::path dir = freshDir("info_sliced");
+  const std::string ply = (dir / "city.ply").string();
+  ASSERT_EQ(runLzb("export 'builtin:city?blocks=2' " + ply + " --quiet").status, 0);
+  const auto estimate = [&](int ranks) {
+    const RunResult r = runLzb("info " + ply + " --json --quiet --method raycast --distribute data " +
+                               "--ranks " + std::to_string(ranks));
+    EXPECT_EQ(r.status, 0) << r.output;
+    const nlohmann::json info = nlohmann::json::parse(r.output);
+    EXPECT_NE(info["streamed"].get<std::string>().find("read in slices"), std::string::npos);
+    return info["estimate"]["ranks"];
+  };
+  const nlohmann::json one = estimate(1), four = estimate(4);
+  ASSERT_TRUE(one[0].contains("load_peak_bytes"));
+  EXPECT_LT(four[0]["load_peak_bytes"].get<double>(), one[0]["load_peak_bytes"].get<double>());
+  for (const auto& rank : four)
+    EXPECT_GE(rank["peak_bytes"].get<double>(), rank["load_peak_bytes"].get<double>());
+}
+
 TEST(Limits, MeasuresCopyScatterAndKeyRates) {
   const RunResult r = runLzb("limits --seconds 0.1 --width 64 --height 48 --threads 1");
   ASSERT_EQ(r.status, 0) << r.output;

@@ -12,8 +12,9 @@ rank with a share draws only from it (the zbuffer's triangles drawn per rank sum
 replicated count) and, with 7 regions, every rank holds some. With 2 frame groups of 3 ranks,
 each group holds the whole scene. The hybrid's probe (whether to cast every pixel) must give the
 same choice and counts on every rank count.
-The landscape, two binary PLY files (the city exported, and a terrain far from the origin that
-the loader stores recentred) and the bunny (a scan's OFF) are streamed, each rank keeping only its
+The two binary PLY files (the city exported, and a terrain far from the origin that the loader
+stores recentred) are read in slices, each rank reading only its slice of the file (its reported
+bytes); the landscape and the bunny (a scan's OFF) are streamed, each rank keeping only its
 triangles; the city generated is loaded whole and cut, and so is a TOML scene placing two mesh
 files, each cut into its triangles (with 7 regions every rank must hold some). A procedural
 terrain is cut into its triangles too (every rank holds some), except for sqrt5, which samples
@@ -160,6 +161,13 @@ def check_run(lzb, work, name, replicated):
         assert all(s in (0, total) for s in shares), ("the terrain cut for sqrt5", shares)
     elif regions >= rep["ranks"]:
         assert all(s > 0 for s in shares), ("a rank holds nothing", shares)
+    if rep["scene"]["source"].endswith(".ply"):
+        # A binary PLY of triangles is read in slices: each rank reads its group's share of the
+        # file and the header, never the whole file (src/regions/sliced_share.hpp).
+        size = os.path.getsize(rep["scene"]["source"])
+        reads = [r["counts"]["bytes_read"] for r in rep["setup"]["ranks"]]
+        limit = size / (rep["ranks"] // groups) + 65536 + 64
+        assert all(b <= limit for b in reads), ("bytes read", reads, size)
     if prefix_of(name).split("_")[0] in APPROXIMATE:
         # Every region drawn: the covered pixels within 10 % of the exact image's (measured:
         # within 7 %), so equal files are no two empty frames.

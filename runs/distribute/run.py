@@ -18,11 +18,14 @@ where the data-mode frame goes.
 Then the city (builtin:city, instanced) at 640x480 and 1920x1080 for raycast, the hybrid and
 lzb: 1 x 2 and 2 x 1 replicated, 2 x 1 and 4 x 1 in data mode (12 frames, the first dropped).
 
+With --scale, the data path at scale instead (scale.py: bytes read, peak and load a rank on
+1 to 8 ranks, PLY files of 10^7 and 5*10^7 triangles; --before=PATH adds an earlier build's rows).
+
 Usage: python3 runs/distribute/run.py [--quick]
-       [--ranks | --capacity | --composite | --stages | --city]
+       [--ranks | --capacity | --composite | --stages | --city | --scale [--before=LZB]]
        (from the repository root, after scripts/build.sh; each flag: that part alone)
 Writes runs/distribute/ranks.csv (one row per configuration and rank), capacity.csv,
-composite.csv, stages.csv and city.csv.
+composite.csv, stages.csv and city.csv; --scale writes scale.csv and scale.png.
 """
 import filecmp
 import json
@@ -35,7 +38,8 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402
 
-common.accept_args(flags=("--quick", "--ranks", "--capacity", "--composite", "--stages", "--city"))
+common.accept_args(flags=("--quick", "--ranks", "--capacity", "--composite", "--stages", "--city",
+                          "--scale"), valued=("before",))
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 QUICK = "--quick" in sys.argv
@@ -230,6 +234,10 @@ def city_study():
 
 
 def main():
+    if "--scale" in sys.argv:
+        import scale  # noqa: E402 (the study of its own file)
+        scale.main()
+        return
     if "--city" in sys.argv:
         city_study()
         return

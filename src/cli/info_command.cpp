@@ -12,6 +12,7 @@
 #include "src/octree/octree.hpp"
 #include "src/regions/memory_estimate.hpp"
 #include "src/regions/share.hpp"
+#include "src/regions/sliced_share.hpp"
 #include "src/regions/streamed_share.hpp"
 #include "src/scene/load.hpp"
 
@@ -54,16 +55,23 @@ void printEstimate(const nlohmann::json& e) {
 
 // The estimated peak of each rank (memory_estimate.hpp), frame buffers excluded, from the
 // triangles each would hold.
+// loadBytes: what a rank holds while it reads its slice of the file (sliced_share.hpp), beside
+// the method's base; its peak is the larger of that and the method's on its share.
 nlohmann::json rankEstimates(const InfoArgs& a, const std::vector<uint64_t>& held,
-                             uint64_t unique) {
+                             uint64_t unique, uint64_t loadBytes = 0) {
   nlohmann::json ranks = nlohmann::json::array();
   const bool compact = regions::parseCompactBvh(a.bvh, "--bvh");
+  const uint64_t loadPeak = regions::methodPeakBytes(a.method, 0, compact) + loadBytes;
   for (int r = 0; r < a.ranks; ++r) {
     // An instanced share holds at most the scene's unique triangles.
     const uint64_t triangles = std::min(held[size_t(r)], unique);
-    ranks.push_back({{"rank", r},
-                     {"triangles", triangles},
-                     {"peak_bytes", regions::methodPeakBytes(a.method, triangles, compact)}});
+    nlohmann::json rank = {
+        {"rank", r},
+        {"triangles", triangles},
+        {"peak_bytes",
+         std::max(regions::methodPeakBytes(a.method, triangles, compact), loadPeak)}};
+    if (loadBytes) rank["load_peak_bytes"] = loadPeak;
+    ranks.push_back(rank);
   }
   // The model's slope: the method's set-up and frames, scene model included.
   const double perTriangle = double(regions::methodPeakBytes(a.method, 1, compact) -
@@ -93,12 +101,13 @@ void printDroppedAndBounds(const SceneOutline& s) {
 // A scene's figures and estimate from its outline and the triangles each rank would hold, the
 // scene never held whole (how: what the report's "streamed" says): no octrees, no scene model.
 int infoWithoutHolding(const InfoArgs& a, const mpi::Group& g, const SceneOutline& outline,
-                       const std::vector<uint64_t>& held, const std::string& how, double seconds) {
+                       const std::vector<uint64_t>& held, const std::string& how, double seconds,
+                       uint64_t loadBytes = 0) {
   nlohmann::json info = sceneSummary(outline);
   info["streamed"] = how;
   info["memory"] = {{"peak_resident_bytes", peakMemoryBytes()}};
   info["seconds"] = {{"centres", seconds}};
-  info["estimate"] = rankEstimates(a, held, outline.uniqueTriangles);
+  info["estimate"] = rankEstimates(a, held, outline.uniqueTriangles, loadBytes);
   if (!g.root()) return 0;
   if (a.json) {
     std::printf("%s\n", info.dump(2).c_str());
@@ -137,8 +146,13 @@ int runInfo(const InfoArgs& a, const mpi::Group& g) {
     SceneOutline outline;
     const std::vector<uint64_t> held = regions::streamedTrianglesPerRank(
         *chunked, a.regions, regions::partsFor(method), a.ranks, outline);
-    return infoWithoutHolding(a, g, outline, held,
-                              "streamed: read once for its centres, never held", clock.seconds());
+    // A binary PLY of triangles: the ranks read it in slices, each holding its slice's load.
+    const std::optional<uint64_t> faces = regions::slicedFaces(a.scene);
+    return infoWithoutHolding(
+        a, g, outline, held,
+        faces ? "read in slices by the ranks; here streamed once for its centres, never held"
+              : "streamed: read once for its centres, never held",
+        clock.seconds(), faces ? regions::slicedLoadBytes(*faces, a.ranks) : 0);
   }
   TomlOutline read =
       data ? loadSceneDeferred(a.scene, !talk, !method.samplesProceduralObjects()) : TomlOutline{};

@@ -16,6 +16,7 @@
 #include "src/image/reference.hpp"
 #include "src/regions/memory_estimate.hpp"
 #include "src/regions/share.hpp"
+#include "src/regions/sliced_share.hpp"
 #include "src/regions/streamed_share.hpp"
 #include "src/scene/chunked_scene.hpp"
 #include "src/scene/load.hpp"
@@ -171,8 +172,11 @@ void loadShareOf(const RenderArgs& a, bool talk, const mpi::Group& group, Render
                              ": more ranks hold smaller shares");
   };
   const auto refuseHeld = [&](const regions::HeldShare& held) { refuse(held.triangles, held); };
-  if (const std::optional<ChunkedScene> chunked =
-          regions::openSharedStream(a.scene, wholeProcedural, !talk)) {
+  if (std::optional<regions::HeldShare> sliced = regions::holdSlicedShare(
+          a.scene, group, a.regions, layout, !talk, plan.outline, refuseHeld)) {
+    plan.held = std::move(*sliced);
+  } else if (const std::optional<ChunkedScene> chunked =
+                 regions::openSharedStream(a.scene, wholeProcedural, !talk)) {
     plan.held =
         regions::holdStreamedShare(*chunked, a.regions, share, layout, plan.outline, refuseHeld);
   } else {

@@ -90,6 +90,7 @@ class PartRenderer : public Renderer {
       stats.addCount("held_triangles", double(part.scene.expandedTriangles()));
       stats.addCount("held_unique_triangles", double(part.scene.uniqueTriangles()));
     }
+    if (held_.bytesRead) stats.addCount("bytes_read", double(*held_.bytesRead));
     stats.setShared("regions", double(held_.regions));
     stats.setShared("units", double(held_.units));
     return stats;

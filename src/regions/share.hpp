@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -43,6 +44,7 @@ struct HeldShare {
   uint64_t triangles = 0;      // their triangles (expanded)
   Parts layout = Parts::kOne;
   std::vector<ScenePart> parts;       // their units: one part, or one per region of `mine`
+  std::optional<uint64_t> bytesRead;  // read in slices (sliced_share.hpp): the file's bytes read
 };
 
 // The layout `method` renders: kOne for an exact method, else kPerRegion.

@@ -11,45 +11,11 @@
 #include "src/scene/load.hpp"
 #include "tests/support/files.hpp"
 #include "tests/support/ply_files.hpp"
+#include "tests/support/shares.hpp"
 #include "tests/support/text_meshes.hpp"
 
 namespace lzb::regions {
 namespace {
-
-void expectSameOutline(const SceneOutline& a, const SceneOutline& b) {
-  EXPECT_EQ(a.source, b.source);
-  EXPECT_EQ(a.bounds.lo, b.bounds.lo);
-  EXPECT_EQ(a.bounds.hi, b.bounds.hi);
-  EXPECT_EQ(a.uniqueTriangles, b.uniqueTriangles);
-  EXPECT_EQ(a.expandedTriangles, b.expandedTriangles);
-  EXPECT_EQ(a.nodes, b.nodes);
-  EXPECT_EQ(a.instanceDepth, b.instanceDepth);
-  EXPECT_EQ(a.stats.loaded, b.stats.loaded);
-  EXPECT_EQ(a.stats.degenerate, b.stats.degenerate);
-  EXPECT_EQ(a.camera.has_value(), b.camera.has_value());
-}
-
-// Everything a renderer of the part sees, triangle by triangle, in world space.
-void expectSamePart(const ScenePart& streamed, const ScenePart& cut) {
-  const Scene &s = streamed.scene, &c = cut.scene;
-  ASSERT_EQ(s.expandedTriangles(), c.expandedTriangles());
-  EXPECT_EQ(streamed.units, cut.units);
-  if (s.expandedTriangles() == 0) return;
-  EXPECT_EQ(s.bounds().lo, c.bounds().lo);
-  EXPECT_EQ(s.bounds().hi, c.bounds().hi);
-  for (uint64_t id = 0; id < s.expandedTriangles(); ++id) {
-    ASSERT_EQ(streamed.ids.global(id), cut.ids.global(id)) << id;
-    const auto a = s.resolve(id), b = c.resolve(id);
-    ASSERT_TRUE(a && b);
-    EXPECT_EQ(a->transform, b->transform) << id;
-    EXPECT_EQ(s.nodeBounds[a->node].lo, c.nodeBounds[b->node].lo) << id;
-    EXPECT_EQ(s.nodeBounds[a->node].hi, c.nodeBounds[b->node].hi) << id;
-    const Mesh &ma = s.nodes[a->node].mesh, &mb = c.nodes[b->node].mesh;
-    for (int k = 0; k < 3; ++k) EXPECT_EQ(ma.vertex(a->triangle, k), mb.vertex(b->triangle, k));
-    EXPECT_EQ(ma.normal(a->triangle), mb.normal(b->triangle));
-    EXPECT_EQ(ma.color(a->triangle), mb.color(b->triangle));
-  }
-}
 
 // Calls check(regions, share, layout) for 1 and 5 regions, every rank of 1 to 3, both layouts.
 template <class Check>
@@ -65,15 +31,6 @@ void forEveryShare(const std::string& spec, Check&& check) {
         }
 }
 
-void expectSameShare(const HeldShare& a, const HeldShare& cut, Parts layout) {
-  EXPECT_EQ(a.regions, cut.regions);
-  EXPECT_EQ(a.units, cut.units);
-  EXPECT_EQ(a.mine, cut.mine);
-  ASSERT_EQ(a.parts.size(), cut.parts.size());
-  EXPECT_EQ(cut.parts.size(), layout == Parts::kOne ? 1u : cut.mine.size());
-  for (size_t p = 0; p < cut.parts.size(); ++p) expectSamePart(a.parts[p], cut.parts[p]);
-}
-
 void expectStreamedEqualsCut(const std::string& spec) {
   const Scene whole = loadScene(spec, true);
   forEveryShare(spec, [&](uint32_t regions, const WorkShare& share, Parts layout) {
@@ -81,8 +38,8 @@ void expectStreamedEqualsCut(const std::string& spec) {
     ASSERT_TRUE(chunked.has_value());
     SceneOutline outline;
     const HeldShare streamed = holdStreamedShare(*chunked, regions, share, layout, outline);
-    expectSameOutline(outline, outlineOf(whole));
-    expectSameShare(streamed, holdShare(whole, regions, share, layout, false), layout);
+    test::expectSameOutline(outline, outlineOf(whole));
+    test::expectSameShare(streamed, holdShare(whole, regions, share, layout, false), layout);
   });
 }
 
@@ -128,12 +85,12 @@ void expectDeferredEqualsCut(const std::string& toml, size_t deferredFiles,
   size_t deferred = 0;
   for (const Node& n : outline.scene.nodes) deferred += n.deferred.has_value();
   ASSERT_EQ(deferred, deferredFiles);
-  expectSameOutline(outlineOf(outline.scene), outlineOf(whole));
+  test::expectSameOutline(outlineOf(outline.scene), outlineOf(whole));
   bool someSplit = false;
   forEveryShare(toml, [&](uint32_t regions, const WorkShare& share, Parts layout) {
     const HeldShare read =
         holdShare(outline.scene, regions, share, layout, wholeProcedural, outline.read);
-    expectSameShare(read, holdShare(whole, regions, share, layout, wholeProcedural), layout);
+    test::expectSameShare(read, holdShare(whole, regions, share, layout, wholeProcedural), layout);
     someSplit = someSplit || read.units > whole.nodes.size();
   });
   EXPECT_TRUE(someSplit) << "a file's mesh was cut into its triangles";

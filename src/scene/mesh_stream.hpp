@@ -46,6 +46,8 @@ class FaceChunks {
   void face(const std::vector<uint32_t>& index);
   // Hands out the last chunk; returns what was kept and dropped.
   LoadStats finish();
+  // The triangles not handed out yet, taken whole (for a caller that keeps every triangle).
+  Mesh take() { return std::exchange(mesh_, Mesh()); }
 
  private:
   const HeldVertices& held_;

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "src/scene/mesh_stream.hpp"
-#include "src/scene/ply_header.hpp"
+#include "src/scene/ply_binary.hpp"
 
 namespace lzb {
 
@@ -24,7 +24,6 @@ class PlyMeshStream : public MeshStream {
   // without vertices, no valid triangle).
   static std::unique_ptr<PlyMeshStream> open(const std::filesystem::path& path, std::string& why);
 
-  struct Layout;  // where the properties lie (ply_stream.cpp)
   ~PlyMeshStream() override;
 
  private:
@@ -42,7 +41,7 @@ class PlyMeshStream : public MeshStream {
   void readFaces(FaceChunks& faces) const override;
 
   PlyHeader header_;
-  std::unique_ptr<Layout> layout_;
+  PlyMeshLayout layout_;
   uint64_t faceData_ = 0;  // file offset of the face element's data
 };
 

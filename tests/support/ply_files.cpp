@@ -1,5 +1,6 @@
 #include "tests/support/ply_files.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -67,6 +68,58 @@ PlyFile polygonMesh(PlyEncoding encoding, double offset, int n) {
   for (int e = 0; e < 4; ++e) {
     f.put(int32_t(e));
     if (e % 2) f.endElement();
+  }
+  return f;
+}
+
+PlyFile triangleMesh(PlyEncoding encoding, double offset, int n, TriangleMeshShape shape) {
+  PlyFile f;
+  f.encoding = encoding;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  std::vector<std::array<double, 3>> grid;
+  std::vector<std::array<uint8_t, 3>> rgb;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const bool nan = i == 2 && j == 3;
+      grid.push_back({nan ? std::numeric_limits<double>::quiet_NaN() : offset + i + jitter(rng),
+                      offset + j + jitter(rng), 0.3 * std::sin(0.5 * i + 0.2 * j)});
+      rgb.push_back({uint8_t(rng()), uint8_t(rng()), uint8_t(rng())});
+    }
+  std::vector<std::array<int32_t, 3>> faces;
+  const auto at = [&](int i, int j) { return int32_t(j * n + i); };
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      faces.push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      // Every eleventh cell's second triangle repeats a corner: degenerate.
+      faces.push_back({at(i, j), (i + j) % 11 ? at(i + 1, j + 1) : at(i, j), at(i, j + 1)});
+    }
+  const size_t vertices = shape.shared ? grid.size() : 3 * faces.size();
+  const std::string type = shape.doubles ? "double" : "float";
+  f.header =
+      "comment triangles\nelement camera 1\nproperty float view_px\nproperty float view_py\n"
+      "element vertex " +
+      std::to_string(vertices) + "\nproperty " + type + " x\nproperty " + type + " y\nproperty " +
+      type + " z\n" +
+      (shape.coloured ? "property uchar red\nproperty uchar green\nproperty uchar blue\n" : "") +
+      "element face " + std::to_string(faces.size()) +
+      "\nproperty uchar flags\nproperty list uchar int vertex_indices\n";
+  f.put(1.5f), f.put(2.5f), f.endElement();
+  const auto putVertex = [&](size_t v) {
+    for (const double c : grid[v]) shape.doubles ? f.put(c) : f.put(float(c));
+    if (shape.coloured)
+      for (const uint8_t c : rgb[v]) f.put(c);
+    f.endElement();
+  };
+  if (shape.shared)
+    for (size_t v = 0; v < grid.size(); ++v) putVertex(v);
+  else
+    for (const auto& face : faces)
+      for (const int32_t v : face) putVertex(size_t(v));
+  for (size_t t = 0; t < faces.size(); ++t) {
+    f.put(uint8_t(t % 5)), f.put(uint8_t(3));
+    for (int k = 0; k < 3; ++k) f.put(shape.shared ? faces[t][size_t(k)] : int32_t(3 * t) + k);
+    f.endElement();
   }
   return f;
 }

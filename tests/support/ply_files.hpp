@@ -53,4 +53,15 @@ struct PlyFile {
 // a colourless-property face list; `offset` moves it all (1e7: recentred by the loader).
 PlyFile polygonMesh(PlyEncoding encoding, double offset, int n = 24);
 
+// A jittered grid of n x n vertices in triangles only (two a cell), every face record of one size
+// as the slice reader takes them (src/scene/ply_slices.hpp): an element of fixed size before the
+// vertices, a scalar face property before the index list, degenerate triangles (a repeated
+// corner) and a NaN vertex that the loaders drop. shared: the triangles index the grid's
+// vertices, else each has three of its own; doubles: positions as doubles, else floats;
+// coloured: vertex colours. `offset` moves it all (1e7: recentred by the loader).
+struct TriangleMeshShape {
+  bool shared = true, doubles = false, coloured = true;
+};
+PlyFile triangleMesh(PlyEncoding encoding, double offset, int n, TriangleMeshShape shape = {});
+
 }  // namespace lzb::test
