@@ -1,5 +1,7 @@
 #include "mpi/collectives.hpp"
 
+#include <cstdint>
+
 namespace lzb::mpi {
 
 std::vector<std::string> gatherStrings(const Group& g, const std::string& mine) {
@@ -9,8 +11,8 @@ std::vector<std::string> gatherStrings(const Group& g, const std::string& mine) 
   int total = 0;
   for (int r = 0; r < g.size; ++r) offsets[size_t(r)] = total, total += lengths[size_t(r)];
   std::string all(g.root() ? size_t(total) : 0, '\0');
-  LZB_MPI_CALL(MPI_Gatherv(mine.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(),
-                           MPI_CHAR, 0, g.comm));
+  LZB_MPI_CALL(MPI_Gatherv(mine.data(), length, MPI_CHAR, all.data(), lengths.data(),
+                           offsets.data(), MPI_CHAR, 0, g.comm));
   std::vector<std::string> out;
   if (g.root())
     for (int r = 0; r < g.size; ++r)
@@ -24,12 +26,26 @@ bool broadcastFlag(const Group& g, bool value) {
   return v != 0;
 }
 
-std::string broadcastString(const Group& g, const std::string& value) {
-  int length = int(value.size());
-  LZB_MPI_CALL(MPI_Bcast(&length, 1, MPI_INT, 0, g.comm));
-  std::string out = g.root() ? value : std::string(size_t(length), '\0');
-  LZB_MPI_CALL(MPI_Bcast(out.data(), length, MPI_CHAR, 0, g.comm));
+std::string broadcastString(const Group& g, const std::string& value, int from) {
+  uint64_t length = value.size();
+  LZB_MPI_CALL(MPI_Bcast(&length, 1, MPI_UINT64_T, from, g.comm));
+  std::string out = g.rank == from ? value : std::string(size_t(length), '\0');
+  LZB_MPI_CALL(MPI_Bcast(out.data(), int(length), MPI_CHAR, from, g.comm));
   return out;
+}
+
+void allreduceInPlace(const Group& g, void* data, size_t n, MPI_Datatype type, MPI_Op op) {
+  if (n) LZB_MPI_CALL(MPI_Allreduce(MPI_IN_PLACE, data, int(n), type, op, g.comm));
+}
+
+Bounds boundsOverRanks(const Group& g, const Bounds& box) {
+  // One reduction: the least of each low corner and of each high corner negated.
+  double v[6] = {box.lo.x, box.lo.y, box.lo.z, -box.hi.x, -box.hi.y, -box.hi.z};
+  allreduceInPlace(g, v, 6, MPI_DOUBLE, MPI_MIN);
+  Bounds all;
+  all.lo = {v[0], v[1], v[2]};
+  all.hi = {-v[3], -v[4], -v[5]};
+  return all;
 }
 
 }  // namespace lzb::mpi

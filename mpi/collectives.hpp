@@ -1,9 +1,12 @@
 #pragma once
-// Small collectives over strings and flags (reports, messages, root-only checks).
+// Small collectives over strings, flags and boxes (reports, messages, root-only checks, what the
+// ranks reading a file in slices agree on).
+#include <cstddef>
 #include <string>
 #include <vector>
 
 #include "mpi/group.hpp"
+#include "src/core/bounds.hpp"
 
 namespace lzb::mpi {
 
@@ -11,6 +14,11 @@ namespace lzb::mpi {
 std::vector<std::string> gatherStrings(const Group& g, const std::string& mine);
 // Broadcasts a flag from the root so every rank takes the same branch after a root-only check.
 bool broadcastFlag(const Group& g, bool value);
-std::string broadcastString(const Group& g, const std::string& value);
+// `value` of rank `from` (the root by default), on every rank.
+std::string broadcastString(const Group& g, const std::string& value, int from = 0);
+// MPI_Allreduce in place of `n` items (none: no call).
+void allreduceInPlace(const Group& g, void* data, size_t n, MPI_Datatype type, MPI_Op op);
+// The box around every rank's `box` (empty ones included: an empty box on every rank stays empty).
+Bounds boundsOverRanks(const Group& g, const Bounds& box);
 
 }  // namespace lzb::mpi

@@ -8,7 +8,8 @@ of that build beside them; a 5*10^7-triangle PLY (objects=2083334) and the lands
 (10^7), raycast only. 3 frames at 640x480, 1 thread a rank. Each rank runs under rank_probe.py:
 its bytes read (rchar), peak resident memory (VmHWM) and CPU seconds; the report gives the
 reader's own count (bytes_read), the load and set-up seconds and the triangles each rank held.
-Every data-mode image must equal the 1-rank data run's, and raycast's the replicated run's.
+Every data-mode image must equal the 1-rank data run's, and raycast's the replicated run's
+(same_image); with --before, each run's images the earlier build's (same_as_before).
 
 Writes runs/distribute/scale.csv (a row per rank) and scale.png (the largest rank's peak against
 the rank count, per scene, method and build).
@@ -31,7 +32,7 @@ FRAMES = 3
 RANKS = [1, 2, 4, 8]
 FIELDS = ["scene", "build", "method", "mode", "ranks", "oversubscribed", "rank", "held_triangles",
           "peak_mib", "rchar_mib", "file_fraction_read", "bytes_read_mib", "load_s", "setup_s",
-          "cpu_s", "same_image"]
+          "cpu_s", "same_image", "same_as_before"]
 
 
 def before_binary():
@@ -103,7 +104,8 @@ def study(label, scene, methods, builds, size, rows, commands, work):
                         if "bytes_read" in counts else "",
                         "load_s": round(rep["load_seconds"], 3),
                         "setup_s": round(rep["setup_seconds"], 3),
-                        "cpu_s": round(p["cpu_s"], 2), "same_image": same})
+                        "cpu_s": round(p["cpu_s"], 2), "same_image": same,
+                        "same_as_before": ""})
                 mine = [x for x in rows if x["scene"] == label and x["method"] == method and
                         x["build"] == build and x["mode"] == mode and x["ranks"] == ranks]
                 print(f"{label} {method} {build} {mode} x{ranks}: peak "
@@ -111,7 +113,16 @@ def study(label, scene, methods, builds, size, rows, commands, work):
                       f"{max(x['rchar_mib'] for x in mine)} MiB a rank, load "
                       f"{mine[0]['load_s']} s + set-up {mine[0]['setup_s']} s, same image: {same}",
                       flush=True)
-            for mode, ranks in runs:
+        # This build's images against the earlier build's, run by run.
+        for row in rows:
+            if (row["scene"], row["method"], row["build"]) != (label, method, "this"):
+                continue
+            this = os.path.join(work, f"{label}_{method}_this_{row['mode']}_{row['ranks']}")
+            before = this.replace("_this_", "_before_")
+            if os.path.isdir(before):
+                row["same_as_before"] = same_frames(this, before)
+        for build, _ in builds:
+            for mode, ranks in [("replicate", 1)] + [("data", n) for n in RANKS]:
                 shutil.rmtree(os.path.join(work, f"{label}_{method}_{build}_{mode}_{ranks}"),
                               ignore_errors=True)
 

@@ -6,6 +6,8 @@
 #include <limits>
 #include <numeric>
 
+#include "mpi/collectives.hpp"
+
 namespace lzb::regions {
 
 namespace {
@@ -29,10 +31,6 @@ struct Node {
   size_t begin, end;
 };
 
-void allreduce(const mpi::Group& g, void* data, size_t n, MPI_Datatype type, MPI_Op op) {
-  if (n) LZB_MPI_CALL(MPI_Allreduce(MPI_IN_PLACE, data, int(n), type, op, g.comm));
-}
-
 // The widest axis of each node's units over all ranks, as splitRange takes it.
 std::vector<int> widestAxes(const mpi::Group& g, std::span<const glm::dvec3> centres,
                             const std::vector<uint32_t>& order, const std::vector<Node>& nodes) {
@@ -45,7 +43,7 @@ std::vector<int> widestAxes(const mpi::Group& g, std::span<const glm::dvec3> cen
         box[6 * a + size_t(k)] = std::min(box[6 * a + size_t(k)], c);
         box[6 * a + 3 + size_t(k)] = std::min(box[6 * a + 3 + size_t(k)], -c);
       }
-  allreduce(g, box.data(), box.size(), MPI_DOUBLE, MPI_MIN);
+  mpi::allreduceInPlace(g, box.data(), box.size(), MPI_DOUBLE, MPI_MIN);
   std::vector<int> axes(nodes.size());
   for (size_t a = 0; a < nodes.size(); ++a) {
     const double* b = &box[6 * a];
@@ -63,49 +61,98 @@ uint64_t leftUnits(const Node& n) {
   return std::clamp<uint64_t>(at, 1, n.total - 1);
 }
 
-// Local unit u's key on `axis`.
-Key keyOf(std::span<const glm::dvec3> centres, uint64_t firstIndex, int axis, uint32_t u) {
-  return Key(orderedBits(centres[u][axis])) << 64 | (firstIndex + u);
+// Each node's keys on its axis, keys[i] that of unit order[i].
+void keysOf(std::span<const glm::dvec3> centres, uint64_t firstIndex, const std::vector<int>& axes,
+            const std::vector<Node>& nodes, const std::vector<uint32_t>& order,
+            std::vector<Key>& keys) {
+#pragma omp parallel for schedule(dynamic)
+  for (long a = 0; a < long(nodes.size()); ++a)
+    for (size_t i = nodes[size_t(a)].begin; i < nodes[size_t(a)].end; ++i)
+      keys[i] =
+          Key(orderedBits(centres[order[i]][axes[size_t(a)]])) << 64 | (firstIndex + order[i]);
+}
+
+// The round (bit shift) each node's select starts at: the leading bytes that the least and the
+// greatest coordinate over all ranks share are every key's, so `prefix` holds them already.
+std::vector<int> firstRounds(const mpi::Group& g, const std::vector<Node>& nodes,
+                             const std::vector<Key>& keys, std::vector<Key>& prefix) {
+  std::vector<uint64_t> least(2 * nodes.size(), ~uint64_t(0));  // the least, the greatest negated
+  for (size_t a = 0; a < nodes.size(); ++a)
+    for (size_t i = nodes[a].begin; i < nodes[a].end; ++i) {
+      const uint64_t value = uint64_t(keys[i] >> 64);
+      least[2 * a] = std::min(least[2 * a], value);
+      least[2 * a + 1] = std::min(least[2 * a + 1], ~value);
+    }
+  mpi::allreduceInPlace(g, least.data(), least.size(), MPI_UINT64_T, MPI_MIN);
+  std::vector<int> first(nodes.size());
+  for (size_t a = 0; a < nodes.size(); ++a) {
+    const uint64_t lo = least[2 * a], hi = ~least[2 * a + 1];
+    const int shared = lo == hi ? 8 : std::countl_zero(lo ^ hi) / 8;  // leading bytes alike
+    prefix[a] = shared ? Key(lo >> (64 - 8 * shared) << (64 - 8 * shared)) << 64 : Key(0);
+    first[a] = 120 - 8 * shared;
+  }
+  return first;
 }
 
 // Each node's want[a]-th least key over all ranks (1-based; keys are distinct): a radix select,
-// 8 bits a round from the top, the node's candidates' counts per byte value all-reduced; a round
-// keeps the candidates of the byte value that holds the wanted key.
-std::vector<Key> cutKeys(const mpi::Group& g, std::span<const glm::dvec3> centres,
-                         uint64_t firstIndex, const std::vector<int>& axes,
-                         const std::vector<Node>& nodes, const std::vector<uint32_t>& order,
-                         std::vector<uint64_t> want) {
+// 8 bits a round from the first byte the node's keys do not all share, the node's candidates'
+// counts per byte value all-reduced; a round keeps the candidates of the byte value that holds
+// the wanted key.
+std::vector<Key> cutKeys(const mpi::Group& g, const std::vector<Node>& nodes,
+                         const std::vector<Key>& keys, std::vector<uint64_t> want) {
   const size_t count = nodes.size();
-  std::vector<std::vector<uint32_t>> candidates(count);
-  for (size_t a = 0; a < count; ++a)
-    candidates[a].assign(order.begin() + std::ptrdiff_t(nodes[a].begin),
-                         order.begin() + std::ptrdiff_t(nodes[a].end));
   std::vector<Key> prefix(count, 0);
+  const std::vector<int> first = firstRounds(g, nodes, keys, prefix);
+  std::vector<std::vector<uint32_t>> candidates(count);  // positions; none yet: the whole node
   std::vector<uint64_t> histogram(256 * count);
-  for (int shift = 120; shift >= 0; shift -= 8) {
+  for (int shift = *std::max_element(first.begin(), first.end()); shift >= 0; shift -= 8) {
     std::fill(histogram.begin(), histogram.end(), 0);
-#pragma omp parallel for schedule(dynamic)
-    for (long a = 0; a < long(count); ++a)
-      for (const uint32_t u : candidates[size_t(a)])
-        ++histogram[256 * size_t(a) +
-                    size_t(keyOf(centres, firstIndex, axes[size_t(a)], u) >> shift & 255)];
-    allreduce(g, histogram.data(), histogram.size(), MPI_UINT64_T, MPI_SUM);
+    const auto byteAt = [&](size_t i) { return size_t(keys[i] >> shift & 255); };
 #pragma omp parallel for schedule(dynamic)
     for (long a = 0; a < long(count); ++a) {
+      const Node& n = nodes[size_t(a)];
+      uint64_t* h = &histogram[256 * size_t(a)];
+      if (shift > first[size_t(a)]) continue;
+      if (shift == first[size_t(a)])
+        for (size_t i = n.begin; i < n.end; ++i) ++h[byteAt(i)];
+      else
+        for (const uint32_t i : candidates[size_t(a)]) ++h[byteAt(i)];
+    }
+    mpi::allreduceInPlace(g, histogram.data(), histogram.size(), MPI_UINT64_T, MPI_SUM);
+#pragma omp parallel for schedule(dynamic)
+    for (long a = 0; a < long(count); ++a) {
+      if (shift > first[size_t(a)]) continue;
       const uint64_t* h = &histogram[256 * size_t(a)];
-      unsigned byte = 0;
+      size_t byte = 0;
       while (h[byte] < want[size_t(a)]) want[size_t(a)] -= h[byte++];
       prefix[size_t(a)] |= Key(byte) << shift;
       std::vector<uint32_t>& c = candidates[size_t(a)];
-      c.erase(std::remove_if(c.begin(), c.end(),
-                             [&](uint32_t u) {
-                               return (keyOf(centres, firstIndex, axes[size_t(a)], u) >> shift &
-                                       255) != byte;
-                             }),
-              c.end());
+      if (shift == first[size_t(a)]) {
+        for (size_t i = nodes[size_t(a)].begin; i < nodes[size_t(a)].end; ++i)
+          if (byteAt(i) == byte) c.push_back(uint32_t(i));
+      } else {
+        c.erase(std::remove_if(c.begin(), c.end(), [&](uint32_t i) { return byteAt(i) != byte; }),
+                c.end());
+      }
     }
   }
   return prefix;
+}
+
+// Node n's units with a key at or below `at` moved before the others, each side in its order
+// (units stay in rising index order, so the centres are read forwards); returns where the others
+// start.
+size_t partitionAt(const Node& n, Key at, std::vector<uint32_t>& order,
+                   const std::vector<Key>& keys, std::vector<uint32_t>& above) {
+  above.clear();
+  size_t below = n.begin;
+  for (size_t i = n.begin; i < n.end; ++i)
+    if (keys[i] <= at)
+      order[below++] = order[i];
+    else
+      above.push_back(order[i]);
+  std::copy(above.begin(), above.end(), order.begin() + std::ptrdiff_t(below));
+  return below;
 }
 
 }  // namespace
@@ -114,10 +161,11 @@ std::vector<uint32_t> splitIntoRegionsTogether(const mpi::Group& group,
                                                std::span<const glm::dvec3> centres,
                                                uint64_t firstIndex, uint32_t regions) {
   const size_t n = centres.size();
-  std::vector<uint32_t> regionOf(n, 0), order(n);
+  std::vector<uint32_t> regionOf(n, 0), order(n), above;
   std::iota(order.begin(), order.end(), 0u);
+  std::vector<Key> keys(n);
   uint64_t total = n;
-  allreduce(group, &total, 1, MPI_UINT64_T, MPI_SUM);
+  mpi::allreduceInPlace(group, &total, 1, MPI_UINT64_T, MPI_SUM);
   std::vector<Node> level;
   if (regions > 0) level.push_back({0, regions, total, 0, n});
   while (!level.empty()) {
@@ -133,19 +181,14 @@ std::vector<uint32_t> splitIntoRegionsTogether(const mpi::Group& group,
     level.clear();
     if (cut.empty()) break;
     const std::vector<int> axes = widestAxes(group, centres, order, cut);
+    keysOf(centres, firstIndex, axes, cut, order, keys);
     std::vector<uint64_t> left(cut.size());
     for (size_t a = 0; a < cut.size(); ++a) left[a] = leftUnits(cut[a]);
-    const std::vector<Key> at = cutKeys(group, centres, firstIndex, axes, cut, order, left);
+    const std::vector<Key> at = cutKeys(group, cut, keys, left);
     for (size_t a = 0; a < cut.size(); ++a) {
       const Node& node = cut[a];
       // The node's units with a key at or below the cut's go left.
-      const auto first = order.begin() + std::ptrdiff_t(node.begin);
-      const auto below = [&](uint32_t u) {
-        return keyOf(centres, firstIndex, axes[a], u) <= at[a];
-      };
-      const size_t mid =
-          node.begin +
-          size_t(std::partition(first, order.begin() + std::ptrdiff_t(node.end), below) - first);
+      const size_t mid = partitionAt(node, at[a], order, keys, above);
       const uint32_t leftRegions = node.count / 2;
       level.push_back({node.first, leftRegions, left[a], node.begin, mid});
       level.push_back({node.first + leftRegions, node.count - leftRegions, node.total - left[a],
@@ -161,7 +204,7 @@ RegionCut cutIntoRegionsTogether(const mpi::Group& group, std::span<const glm::d
   cut.regionOf = splitIntoRegionsTogether(group, centres, firstIndex, regions);
   cut.regionTriangles.assign(regions, 0);
   for (const uint32_t r : cut.regionOf) ++cut.regionTriangles[r];
-  allreduce(group, cut.regionTriangles.data(), regions, MPI_UINT64_T, MPI_SUM);
+  mpi::allreduceInPlace(group, cut.regionTriangles.data(), regions, MPI_UINT64_T, MPI_SUM);
   return cut;
 }
 

@@ -1,5 +1,7 @@
 #include "src/regions/sliced_share.hpp"
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -8,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "mpi/collectives.hpp"
 #include "mpi/decomposition.hpp"
 #include "mpi/failure.hpp"
 #include "src/core/error.hpp"
@@ -24,8 +27,17 @@ namespace {
 
 constexpr int kExchangeTag = 4242;
 
-void allreduce(const mpi::Group& g, void* data, size_t n, MPI_Datatype type, MPI_Op op) {
-  if (n) LZB_MPI_CALL(MPI_Allreduce(MPI_IN_PLACE, data, int(n), type, op, g.comm));
+// The pages of buffers freed since, handed back to the system: glibc keeps them for the next
+// allocation, so a step's buffers would stay in the rank's peak through the steps after it.
+void handBackFreedPages() {
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
+}
+
+bool plyExtension(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  return ext == ".ply" || ext == ".PLY";
 }
 
 // The rank whose shareRange of `count` items holds item i.
@@ -35,25 +47,28 @@ int holderOf(uint64_t i, uint64_t count, int size) {
   return int(r + (i - r * (q + 1)) / q);
 }
 
-// Sends counts[r] items of `send` (grouped by rank, in rank order) to each rank r and returns
-// what each rank sent this one, in rank order: messages of at most chunkBytes a pair and round,
-// each from its own address, so no count or displacement passes 32 bits.
+// Writes items [first, first + count) of those this rank sends rank `to` into `out`.
 template <class T>
-std::vector<T> exchange(const mpi::Group& g, std::span<const T> send,
-                        const std::vector<uint64_t>& counts, uint64_t chunkBytes,
+using Packer = std::function<void(size_t to, uint64_t first, uint64_t count, T* out)>;
+
+// Sends counts[r] items to each rank r, packed round by round, and returns what each rank sent
+// this one, in rank order. A round sends each rank at most chunkBytes, and at most
+// kExchangeRoundBytes in all, each message from its own buffer, so neither a count nor the send
+// buffers grow with the share: what leaves is never held whole.
+template <class T>
+std::vector<T> exchange(const mpi::Group& g, const std::vector<uint64_t>& counts,
+                        uint64_t chunkBytes, const Packer<T>& pack,
                         std::vector<uint64_t>* received = nullptr) {
   const size_t n = size_t(g.size);
   std::vector<uint64_t> recvCounts(n);
   LZB_MPI_CALL(
       MPI_Alltoall(counts.data(), 1, MPI_UINT64_T, recvCounts.data(), 1, MPI_UINT64_T, g.comm));
-  std::vector<uint64_t> sendAt(n, 0), recvAt(n, 0);
-  for (size_t r = 1; r < n; ++r) {
-    sendAt[r] = sendAt[r - 1] + counts[r - 1];
-    recvAt[r] = recvAt[r - 1] + recvCounts[r - 1];
-  }
+  std::vector<uint64_t> recvAt(n, 0);
+  for (size_t r = 1; r < n; ++r) recvAt[r] = recvAt[r - 1] + recvCounts[r - 1];
   std::vector<T> recv(size_t(recvAt[n - 1] + recvCounts[n - 1]));
-  const uint64_t chunk =
-      std::max<uint64_t>(1, std::min<uint64_t>(chunkBytes, INT32_MAX) / sizeof(T));
+  const uint64_t pairBytes = std::min({chunkBytes, kExchangeRoundBytes / n, uint64_t(INT32_MAX)});
+  const uint64_t chunk = std::max<uint64_t>(1, pairBytes / sizeof(T));
+  std::vector<std::vector<T>> outbox(n);
   std::vector<MPI_Request> requests;
   for (uint64_t done = 0;; done += chunk) {
     requests.clear();
@@ -62,10 +77,12 @@ std::vector<T> exchange(const mpi::Group& g, std::span<const T> send,
         LZB_MPI_CALL(MPI_Irecv(recv.data() + recvAt[r] + done,
                                int(std::min(chunk, recvCounts[r] - done) * sizeof(T)), MPI_BYTE,
                                int(r), kExchangeTag, g.comm, &requests.emplace_back()));
-      if (counts[r] > done)
-        LZB_MPI_CALL(MPI_Isend(send.data() + sendAt[r] + done,
-                               int(std::min(chunk, counts[r] - done) * sizeof(T)), MPI_BYTE, int(r),
-                               kExchangeTag, g.comm, &requests.emplace_back()));
+      if (counts[r] > done) {
+        outbox[r].resize(size_t(std::min(chunk, counts[r] - done)));
+        pack(r, done, outbox[r].size(), outbox[r].data());
+        LZB_MPI_CALL(MPI_Isend(outbox[r].data(), int(outbox[r].size() * sizeof(T)), MPI_BYTE,
+                               int(r), kExchangeTag, g.comm, &requests.emplace_back()));
+      }
     }
     if (requests.empty()) {
       if (received) *received = std::move(recvCounts);
@@ -75,13 +92,17 @@ std::vector<T> exchange(const mpi::Group& g, std::span<const T> send,
   }
 }
 
-// `text` of rank `from`, on every rank.
-std::string broadcastFrom(const mpi::Group& g, int from, std::string text) {
-  uint64_t size = text.size();
-  LZB_MPI_CALL(MPI_Bcast(&size, 1, MPI_UINT64_T, from, g.comm));
-  text.resize(size_t(size));
-  LZB_MPI_CALL(MPI_Bcast(text.data(), int(size), MPI_CHAR, from, g.comm));
-  return text;
+// exchange() of items held in `send`, grouped by rank in rank order.
+template <class T>
+std::vector<T> exchange(const mpi::Group& g, std::span<const T> send,
+                        const std::vector<uint64_t>& counts, uint64_t chunkBytes,
+                        std::vector<uint64_t>* received = nullptr) {
+  std::vector<uint64_t> sendAt(counts.size(), 0);
+  for (size_t r = 1; r < counts.size(); ++r) sendAt[r] = sendAt[r - 1] + counts[r - 1];
+  const Packer<T> copy = [&](size_t to, uint64_t first, uint64_t count, T* out) {
+    std::copy_n(send.begin() + std::ptrdiff_t(sendAt[to] + first), count, out);
+  };
+  return exchange<T>(g, counts, chunkBytes, copy, received);
 }
 
 // A rank's slice of the file: its vertex records and the faces of its face records.
@@ -108,29 +129,24 @@ bool readSlice(const mpi::Group& g, PlySlices& file, Slice& slice) {
   const bool stopped = read.stop < faces.end;
   uint64_t first[2] = {stopped && read.notTriangle ? read.stop : ~uint64_t(0),
                        stopped && !read.notTriangle ? read.stop : ~uint64_t(0)};
-  allreduce(g, first, 2, MPI_UINT64_T, MPI_MIN);
+  mpi::allreduceInPlace(g, first, 2, MPI_UINT64_T, MPI_MIN);
   if (first[0] != ~uint64_t(0)) return false;
   if (first[1] == ~uint64_t(0)) return true;
-  const std::string error = broadcastFrom(g, holderOf(first[1], file.faces(), g.size), read.error);
+  const std::string error =
+      mpi::broadcastString(g, read.error, holderOf(first[1], file.faces(), g.size));
   mpi::agree(g, [&] { throw InputError(file.where() + ": " + error); });
   return false;
 }
 
 // The stored frame of the whole file, from the bounds of every rank's finite vertices.
 HeldVertices storedFrame(const mpi::Group& g, const Slice& slice) {
-  double box[6];
-  std::fill(box, box + 6, std::numeric_limits<double>::max());
+  Bounds finite;
   for (const glm::vec3& v : slice.positions) {
     const glm::dvec3 p = storedVertex(glm::dmat4(1.0), v.x, v.y, v.z, glm::dvec3(0.0));
-    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
-    for (int k = 0; k < 3; ++k)
-      box[k] = std::min(box[k], p[k]), box[3 + k] = std::min(box[3 + k], -p[k]);
+    if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) finite.extend(p);
   }
-  allreduce(g, box, 6, MPI_DOUBLE, MPI_MIN);
-  Bounds finite;
-  if (box[0] <= -box[3]) finite = Bounds{{box[0], box[1], box[2]}, {-box[3], -box[4], -box[5]}};
   HeldVertices frame;
-  frame.place(finite);
+  frame.place(mpi::boundsOverRanks(g, finite));
   return frame;
 }
 
@@ -190,21 +206,16 @@ struct Travelling {
   glm::vec3 corner[3];  // stored frame
 };
 
-// The local triangles packed by the rank holding their region (rank order, IDs rising in each).
-std::vector<Travelling> pack(const Mesh& mesh, uint64_t firstId, const RegionCut& cut,
-                             const std::vector<int>& owner, std::vector<uint64_t>& counts) {
+// The local triangles grouped by the rank holding their region (rank order, IDs rising in each),
+// and how many go to each rank.
+std::vector<uint32_t> byHolder(const RegionCut& cut, const std::vector<int>& owner,
+                               std::vector<uint64_t>& counts) {
   std::vector<uint64_t> at(counts.size(), 0);
   for (const uint32_t r : cut.regionOf) ++counts[size_t(owner[r])];
   for (size_t r = 1; r < at.size(); ++r) at[r] = at[r - 1] + counts[r - 1];
-  std::vector<Travelling> out(mesh.size());
-  for (size_t t = 0; t < mesh.size(); ++t) {
-    const uint32_t region = cut.regionOf[t];
-    out[at[size_t(owner[region])]++] = {firstId + t,
-                                        region,
-                                        mesh.color(t),
-                                        {mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2)}};
-  }
-  return out;
+  std::vector<uint32_t> order(cut.regionOf.size());
+  for (uint32_t t = 0; t < order.size(); ++t) order[at[size_t(owner[cut.regionOf[t]])]++] = t;
+  return order;
 }
 
 // The received triangles (ID order) kept in the parts of their regions.
@@ -226,20 +237,97 @@ void keepArrived(const std::vector<Travelling>& arrived, const HeldShare& held, 
   }
 }
 
+// This rank's triangles of the file read in slices, in the stored frame.
+struct LocalTriangles {
+  Mesh mesh;                  // in file order
+  uint64_t firstId = 0;       // the whole scene's ID of the first
+  glm::dmat4 placement{1.0};  // stored frame -> world
+  Bounds nodeBox;             // the stored frame's box of every rank's triangles
+};
+
+// Steps 1 and 2: the slices read, the vertices fetched, the triangles made; the outline from every
+// rank's counts and boxes. nullopt (on every rank) when the file is not read in slices.
+std::optional<LocalTriangles> makeTriangles(const mpi::Group& group, PlySlices& file,
+                                            uint64_t chunkBytes, bool quiet,
+                                            SceneOutline& outline) {
+  LocalTriangles local;
+  LoadStats stats;
+  {
+    Slice slice;
+    if (!readSlice(group, file, slice)) return std::nullopt;
+    HeldVertices frame = storedFrame(group, slice);
+    fetchVertices(group, file.vertices(), chunkBytes, slice, frame);
+    local.mesh = trianglesOf(slice, frame, stats);
+    local.placement = frame.placement;
+  }
+  const uint64_t kept = local.mesh.size();
+  LZB_MPI_CALL(MPI_Exscan(&kept, &local.firstId, 1, MPI_UINT64_T, MPI_SUM, group.comm));
+  if (group.root()) local.firstId = 0;  // MPI_Exscan leaves rank 0's undefined
+  uint64_t counts[3] = {stats.loaded, stats.degenerate, stats.nonFinite};
+  mpi::allreduceInPlace(group, counts, 3, MPI_UINT64_T, MPI_SUM);
+  stats = {counts[0], counts[1], counts[2]};
+  require(stats.loaded > 0, file.where(),
+          "no valid triangles (" + std::to_string(stats.degenerate) + " degenerate, " +
+              std::to_string(stats.nonFinite) + " non-finite dropped)");
+  if (!quiet && group.root()) warnDropped(file.where(), stats);
+  Bounds stored;  // the node's own box: the kept triangles' vertices
+  for (const glm::vec3& p : local.mesh.positions) stored.extend(glm::dvec3(p));
+  local.nodeBox = mpi::boundsOverRanks(group, stored);
+  SceneOutline base;
+  base.source = file.where();
+  outline = placedMeshOutline(base, local.nodeBox, local.placement, stats.loaded, stats);
+  return local;
+}
+
+// Step 3: the regions cut from every rank's centres and dealt (held.regions set).
+RegionCut cutAndDeal(const mpi::Group& group, const LocalTriangles& local, Parts layout,
+                     HeldShare& held) {
+  std::vector<glm::dvec3> centres(local.mesh.size());
+  for (size_t t = 0; t < centres.size(); ++t)
+    centres[t] = placedCentroid(local.mesh, t, local.placement);
+  RegionCut cut = cutIntoRegionsTogether(group, centres, local.firstId, held.regions);
+  dealRegions(cut.regionTriangles, held, WorkShare{group.rank, group.size}, layout);
+  return cut;
+}
+
+// Step 4: each triangle sent to the rank holding its region, the arrivals kept in this rank's
+// parts; what was sent and received is freed before the parts are finished.
+void exchangeAndKeep(const mpi::Group& group, LocalTriangles& local, RegionCut& cut,
+                     const SceneOutline& outline, uint64_t chunkBytes, HeldShare& held) {
+  std::vector<uint64_t> sendCounts(size_t(group.size), 0);
+  std::vector<Travelling> arrived;
+  {
+    const std::vector<uint32_t> order =
+        byHolder(cut, regionOwners(cut.regionTriangles, group.size), sendCounts);
+    std::vector<uint64_t> sendAt(sendCounts.size(), 0);
+    for (size_t r = 1; r < sendAt.size(); ++r) sendAt[r] = sendAt[r - 1] + sendCounts[r - 1];
+    const Mesh& mesh = local.mesh;
+    const Packer<Travelling> pack = [&](size_t to, uint64_t first, uint64_t count,
+                                        Travelling* out) {
+      for (uint64_t k = 0; k < count; ++k) {
+        const uint32_t t = order[sendAt[to] + first + k];
+        out[k] = {local.firstId + t,
+                  cut.regionOf[t],
+                  mesh.color(t),
+                  {mesh.vertex(t, 0), mesh.vertex(t, 1), mesh.vertex(t, 2)}};
+      }
+    };
+    arrived = exchange<Travelling>(group, sendCounts, chunkBytes, pack);
+  }
+  local.mesh = Mesh(), cut = RegionCut();
+  held.parts.resize(partCount(held, held.layout));
+  uint32_t meshNode = 0;
+  for (ScenePart& part : held.parts) meshNode = startMeshPart(outline, local.placement, part.scene);
+  keepArrived(arrived, held, meshNode, held.parts);
+  arrived = {};
+  for (ScenePart& part : held.parts) finishMeshPart(outline, meshNode, local.nodeBox, part.scene);
+}
+
 }  // namespace
 
 uint64_t slicedLoadBytes(uint64_t faces, int ranks) {
   return kSlicedLoadBytesPerFace * (faces / uint64_t(ranks) + 1);
 }
-
-namespace {
-
-bool plyExtension(const std::string& path) {
-  const std::string ext = std::filesystem::path(path).extension().string();
-  return ext == ".ply" || ext == ".PLY";
-}
-
-}  // namespace
 
 std::optional<uint64_t> slicedFaces(const std::string& path) {
   if (!plyExtension(path)) return std::nullopt;
@@ -264,61 +352,17 @@ std::optional<HeldShare> holdSlicedShare(const std::string& path, const mpi::Gro
                       ": more ranks read smaller slices");
   });
   if (!file) return std::nullopt;
-  Slice slice;
-  if (!readSlice(group, *file, slice)) return std::nullopt;
-  HeldVertices frame = storedFrame(group, slice);
-  fetchVertices(group, file->vertices(), chunkBytes, slice, frame);
-  LoadStats stats;
-  Mesh mesh = trianglesOf(slice, frame, stats);
-  slice = Slice();
-  frame.positions = {}, frame.colours = {};
-  // The outline from all ranks' counts and boxes, the IDs from the counts before this rank's.
-  uint64_t firstId = 0, kept = mesh.size();
-  LZB_MPI_CALL(MPI_Exscan(&kept, &firstId, 1, MPI_UINT64_T, MPI_SUM, group.comm));
-  if (group.rank == 0) firstId = 0;
-  uint64_t counts[3] = {stats.loaded, stats.degenerate, stats.nonFinite};
-  allreduce(group, counts, 3, MPI_UINT64_T, MPI_SUM);
-  stats = {counts[0], counts[1], counts[2]};
-  require(stats.loaded > 0, file->where(),
-          "no valid triangles (" + std::to_string(stats.degenerate) + " degenerate, " +
-              std::to_string(stats.nonFinite) + " non-finite dropped)");
-  if (!quiet && group.root()) warnDropped(path, stats);
-  double box[6];
-  std::fill(box, box + 6, std::numeric_limits<double>::max());
-  for (const glm::vec3& p : mesh.positions)
-    for (int k = 0; k < 3; ++k)
-      box[k] = std::min(box[k], double(p[k])), box[3 + k] = std::min(box[3 + k], -double(p[k]));
-  allreduce(group, box, 6, MPI_DOUBLE, MPI_MIN);
-  const Bounds nodeBox{{box[0], box[1], box[2]}, {-box[3], -box[4], -box[5]}};
-  SceneOutline base;
-  base.source = path;
-  outline = placedMeshOutline(base, nodeBox, frame.placement, stats.loaded, stats);
-
+  std::optional<LocalTriangles> local = makeTriangles(group, *file, chunkBytes, quiet, outline);
+  if (!local) return std::nullopt;
   HeldShare held;
-  held.regions = regionCount(regions, stats.loaded, layout == Parts::kOne);
-  held.units = stats.loaded;
-  RegionCut cut;
-  {
-    std::vector<glm::dvec3> centres(mesh.size());
-    for (size_t t = 0; t < mesh.size(); ++t) centres[t] = placedCentroid(mesh, t, frame.placement);
-    cut = cutIntoRegionsTogether(group, centres, firstId, held.regions);
-  }
-  dealRegions(cut.regionTriangles, held, WorkShare{group.rank, group.size}, layout);
+  held.regions = regionCount(regions, outline.uniqueTriangles, layout == Parts::kOne);
+  held.units = outline.uniqueTriangles;
+  handBackFreedPages();
+  RegionCut cut = cutAndDeal(group, *local, layout, held);
+  handBackFreedPages();
   if (beforeKeeping) mpi::agree(group, [&] { beforeKeeping(held); });
-  std::vector<uint64_t> sendCounts(size_t(group.size), 0);
-  std::vector<Travelling> arrived;
-  {
-    const std::vector<Travelling> leaving =
-        pack(mesh, firstId, cut, regionOwners(cut.regionTriangles, group.size), sendCounts);
-    mesh = Mesh(), cut = RegionCut();
-    arrived = exchange<Travelling>(group, leaving, sendCounts, chunkBytes);
-  }
-  held.parts.resize(partCount(held, layout));
-  uint32_t meshNode = 0;
-  for (ScenePart& part : held.parts) meshNode = startMeshPart(outline, frame.placement, part.scene);
-  keepArrived(arrived, held, meshNode, held.parts);
-  arrived = {};
-  for (ScenePart& part : held.parts) finishMeshPart(outline, meshNode, nodeBox, part.scene);
+  exchangeAndKeep(group, *local, cut, outline, chunkBytes, held);
+  handBackFreedPages();
   held.bytesRead = file->bytesRead();
   return held;
 }

@@ -7,9 +7,10 @@
 //     bounds; IDs from an exclusive scan of the kept counts, dropped triangles included);
 //  3. the regions are cut from the spread centres (distributed_cut.hpp) and dealt as every share
 //     is (partOfRank), so they are the streamed share's;
-//  4. each triangle travels to the rank holding its region (MPI_Alltoallv in rounds of at most
-//     `chunkBytes` a pair: counts are 32-bit), and the exchange's buffers are freed before the
-//     rank builds anything on its share.
+//  4. each triangle travels to the rank holding its region, packed round by round into messages
+//     of at most `chunkBytes` a pair and kExchangeRoundBytes a rank (counts are 32-bit, and what
+//     leaves is never held whole), and the exchange's buffers are freed before the rank builds
+//     anything on its share.
 // The share, its IDs and the outline are those holdStreamedShare gives (tested on 1 to 4 ranks);
 // nothing per triangle or vertex of the whole scene is held by any rank.
 #include <cstdint>
@@ -23,8 +24,10 @@
 
 namespace lzb::regions {
 
-// The most bytes one rank sends another in one round of the exchange.
+// The most bytes one rank sends another in one round of the exchange, and sends in all in one
+// round (what it packs at once).
 constexpr uint64_t kExchangeChunkBytes = uint64_t(1) << 30;
+constexpr uint64_t kExchangeRoundBytes = uint64_t(16) << 20;
 
 // Bytes a rank holds at the load's peak per face it reads (face records, triangles, centres, the
 // cut's keys and the exchange's records), for the refusal before reading.
