@@ -11,10 +11,11 @@ cd "$(dirname "$0")/.."
 targets=() filter=()
 if [ "${1:-}" = "--input" ]; then
   shift
-  targets=(--target lzb scene_test core_test image_test cli_test fuzz_replay_test)
+  targets=(--target lzb scene_test core_test image_test regions_test cli_test fuzz_replay_test)
   suites='Builtin|Chessboard|City|Forest|MeshFile|Replicated|Sphereflake|TomlScene|TomlSceneErrors'
   suites+='|TomlTextCheck|Triangulate|Camera|CameraFraming|CameraPath|DepthKey|Framebuffer|Frustum'
-  suites+='|Mesh|Scene|ScenePart|FrameIoTest|Metrics|Reference|Compare|Info|Render|Batch'
+  suites+='|Mesh|Scene|ScenePart|PlySlices|StreamedShare|FrameIoTest|Metrics|Reference|Compare|Info'
+  suites+='|Render|Batch'
   filter=(-R "^(($suites)\.|Targets/FuzzReplay\.|Cases/BadInput\.|unprivileged_error_paths$)")
 fi
 bash scripts/install-deps.sh --test

@@ -22,7 +22,8 @@ With --scale, the data path at scale instead (scale.py: bytes read, peak and loa
 1 to 8 ranks, PLY files of 10^7 and 5*10^7 triangles; --before=PATH adds an earlier build's rows).
 
 Usage: python3 runs/distribute/run.py [--quick]
-       [--ranks | --capacity | --composite | --stages | --city | --scale [--before=LZB]]
+       [--ranks | --capacity | --composite | --stages | --city | --scale [--before=LZB]
+        [--plot-only]]
        (from the repository root, after scripts/build.sh; each flag: that part alone)
 Writes runs/distribute/ranks.csv (one row per configuration and rank), capacity.csv,
 composite.csv, stages.csv and city.csv; --scale writes scale.csv and scale.png.
@@ -39,7 +40,7 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 import common  # noqa: E402
 
 common.accept_args(flags=("--quick", "--ranks", "--capacity", "--composite", "--stages", "--city",
-                          "--scale"), valued=("before",))
+                          "--scale", "--plot-only"), valued=("before",))
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 QUICK = "--quick" in sys.argv

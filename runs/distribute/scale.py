@@ -12,7 +12,7 @@ Every data-mode image must equal the 1-rank data run's, and raycast's the replic
 (same_image); with --before, each run's images the earlier build's (same_as_before).
 
 Writes runs/distribute/scale.csv (a row per rank) and scale.png (the largest rank's peak against
-the rank count, per scene, method and build).
+the rank count, per scene, method and build; --plot-only redraws it from the CSV).
 """
 import filecmp
 import json
@@ -161,9 +161,9 @@ def plot(rows):
     for s in series:
         block = []
         for n in RANKS:
-            xs = [r["peak_mib"] for r in rows
+            xs = [float(r["peak_mib"]) for r in rows
                   if (r["scene"], r["method"], r["build"]) == s and r["mode"] == "data" and
-                  r["ranks"] == n]
+                  int(r["ranks"]) == n]
             if xs:
                 block.append([n, max(xs)])
         if block:
@@ -177,10 +177,11 @@ set terminal pngcairo size 900,520 font ',10'
 set output '{os.path.join(HERE, "scale.png")}'
 set title 'largest rank peak under --distribute data (3 frames, 640x480, 1 thread a rank; 4, 8 oversubscribed)'
 set logscale x 2
+set logscale y 2
 set xtics (1, 2, 4, 8)
 set xlabel 'ranks'
 set ylabel 'MiB'
-set yrange [0:*]
+set ytics (128, 256, 512, 1024, 2048, 4096, 8192)
 set key top right
 set grid
 plot {plots}
@@ -188,6 +189,9 @@ plot {plots}
 
 
 def main():
+    if "--plot-only" in sys.argv:  # redraws scale.png from scale.csv
+        plot(common.read_csv(os.path.join(HERE, "scale.csv")))
+        return
     before = before_binary()
     builds = [("this", common.LZB)] + ([("before", before)] if before else [])
     work = tempfile.mkdtemp(prefix="lzb-scale-")
