@@ -158,13 +158,3 @@ TEST(MpiCollectives, GatherAndBroadcastStrings) {
 
 }  // namespace
 }  // namespace lzb
-
-int main(int argc, char** argv) {
-  lzb::mpi::Session session(&argc, &argv);
-  ::testing::InitGoogleTest(&argc, argv);
-  const int failed = RUN_ALL_TESTS();
-  // Every rank must agree on the verdict, or mpiexec could report success for a failing rank.
-  int anyFailed = 0;
-  MPI_Allreduce(&failed, &anyFailed, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  return anyFailed;
-}
