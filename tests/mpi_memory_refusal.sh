@@ -47,3 +47,19 @@ grep -q '"distribution": "data"' "$work/auto/report.json" || { echo "FAIL: auto 
 cmp "$work/whole/frame_0000.exr" "$work/auto/frame_0000.exr" ||
   { echo "FAIL: the cut scene's image differs"; exit 1; }
 echo "ok: auto cut the scene across 2 limited ranks, the unlimited image"
+
+# The same scene as a binary PLY: auto weighs it from its header alone, and the ranks read it in
+# slices, each share weighed against what its rank could use before loading (the slice's load is
+# freed before the build), the image that of 1 rank without the limit.
+ply="$work/landscape.ply"
+"$lzb" export "$scene" "$ply" --quiet
+exact_ply=(render "$ply" --method raycast --quiet --threads 1 --frames 1 --width 160 --height 120)
+"$lzb" "${exact_ply[@]}" --out "$work/whole_ply" >/dev/null
+timeout 120 "$mpiexec" --oversubscribe -n 2 "${limit[@]}" 1100000 "$lzb" "${exact_ply[@]}" \
+  --distribute auto --out "$work/auto_ply" >/dev/null
+grep -q '"distribution": "data"' "$work/auto_ply/report.json" ||
+  { echo "FAIL: auto did not cut the PLY"; exit 1; }
+grep -q '"bytes_read"' "$work/auto_ply/report.json" || { echo "FAIL: the PLY not read in slices"; exit 1; }
+cmp "$work/whole_ply/frame_0000.exr" "$work/auto_ply/frame_0000.exr" ||
+  { echo "FAIL: the cut PLY's image differs"; exit 1; }
+echo "ok: auto cut the PLY across 2 limited ranks (read in slices), the unlimited image"

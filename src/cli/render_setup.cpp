@@ -163,17 +163,26 @@ void loadShareOf(const RenderArgs& a, bool talk, const mpi::Group& group, Render
   const Method& method = methodNamed(a.method, "--method");
   const regions::Parts layout = regions::partsFor(method);
   const bool wholeProcedural = method.samplesProceduralObjects();
-  const auto refuse = [&](uint64_t triangles, const regions::HeldShare& held) {
+  // What this rank may use before it loads: a slice's load is freed before the method builds (and
+  // its own peak is checked before reading), so its share is weighed against this, not against
+  // what the load still maps when the regions are dealt.
+  const uint64_t usableBeforeLoad = usableMemoryBytes();
+  const auto refuse = [&](uint64_t triangles, const regions::HeldShare& held, uint64_t usable) {
     regions::requireEstimate(rankPeakBytes(a, triangles), a.scene,
                              "rank " + std::to_string(share.rank) + " of " +
                                  std::to_string(share.size) + " " + holding(triangles, a) + " (" +
                                  std::to_string(held.mine.size()) + " of " +
                                  std::to_string(held.regions) + " regions)",
-                             ": more ranks hold smaller shares");
+                             ": more ranks hold smaller shares", usable);
   };
-  const auto refuseHeld = [&](const regions::HeldShare& held) { refuse(held.triangles, held); };
+  const auto refuseHeld = [&](const regions::HeldShare& held) {
+    refuse(held.triangles, held, usableMemoryBytes());
+  };
+  const auto refuseSliced = [&](const regions::HeldShare& held) {
+    refuse(held.triangles, held, usableBeforeLoad);
+  };
   if (std::optional<regions::HeldShare> sliced = regions::holdSlicedShare(
-          a.scene, group, a.regions, layout, !talk, plan.outline, refuseHeld)) {
+          a.scene, group, a.regions, layout, !talk, plan.outline, refuseSliced)) {
     plan.held = std::move(*sliced);
   } else if (const std::optional<ChunkedScene> chunked =
                  regions::openSharedStream(a.scene, wholeProcedural, !talk)) {
@@ -184,11 +193,11 @@ void loadShareOf(const RenderArgs& a, bool talk, const mpi::Group& group, Render
     // refused before they are, as lzb info estimates it (a placed mesh held whole, so at most
     // the scene's unique triangles).
     const TomlOutline whole = loadSceneDeferred(a.scene, !talk, !wholeProcedural);
-    plan.held =
-        regions::holdShare(whole.scene, a.regions, share, layout, wholeProcedural, whole.read,
-                           [&](const regions::HeldShare& held) {
-                             refuse(std::min(held.triangles, whole.scene.uniqueTriangles()), held);
-                           });
+    plan.held = regions::holdShare(whole.scene, a.regions, share, layout, wholeProcedural,
+                                   whole.read, [&](const regions::HeldShare& held) {
+                                     refuse(std::min(held.triangles, whole.scene.uniqueTriangles()),
+                                            held, usableMemoryBytes());
+                                   });
     plan.outline = outlineOf(whole.scene);
   }
   plan.scene = sceneFromOutline(plan.outline);
@@ -198,6 +207,9 @@ void loadShareOf(const RenderArgs& a, bool talk, const mpi::Group& group, Render
 
 bool replicaFits(const RenderArgs& a) {
   if (!a.reference.empty() || methodNamed(a.method, "--method").rendersFromStore()) return true;
+  // A PLY read in slices gives its count from its header; a stream reads the file for it.
+  if (const std::optional<uint64_t> faces = regions::slicedFaces(a.scene))
+    return rankPeakBytes(a, *faces) <= usableMemoryBytes();
   const std::optional<ChunkedScene> chunked = openChunkedScene(a.scene, true);
   return !chunked || rankPeakBytes(a, chunked->triangles) <= usableMemoryBytes();
 }

@@ -58,9 +58,10 @@ struct RenderPlan {
 void loadPlan(const RenderArgs& a, bool talk, RenderPlan& plan, const mpi::Group* group = nullptr,
               regions::Distribution distribution = regions::Distribution::kReplicate);
 
-// --distribute auto on this rank: whether the whole scene fits replicated. Only a streamed scene
-// (PLY, OFF, OBJ, builtin:landscape) is known before it is read; the others are read whole in
-// either mode, and fit as far as auto can tell.
+// --distribute auto on this rank: whether the whole scene fits replicated. Only a PLY read in
+// slices (its header read) or a streamed scene (PLY, OFF, OBJ, builtin:landscape; read once) is
+// known before it is loaded; the others are read whole in either mode, and fit as far as auto can
+// tell.
 bool replicaFits(const RenderArgs& a);
 
 }  // namespace lzb

@@ -50,8 +50,7 @@ uint64_t streamedCutBytes(uint64_t triangles) {
 }
 
 void requireEstimate(uint64_t bytes, const std::string& scene, const std::string& what,
-                     const std::string& hint) {
-  const uint64_t usable = usableMemoryBytes();
+                     const std::string& hint, uint64_t usable) {
   if (bytes <= usable) return;
   throw InputError(scene + ": " + what + " needs an estimated " + memoryShortfall(bytes, usable) +
                    hint);

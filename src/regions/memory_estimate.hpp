@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <string>
 
+#include "src/core/system.hpp"
+
 namespace lzb::regions {
 
 // The peak of `method` holding `triangles` unique triangles, frame buffers excluded; with
@@ -23,9 +25,9 @@ bool hasMemoryModel(const std::string& method);
 uint64_t streamedCutBytes(uint64_t triangles);
 
 // Throws InputError "<scene>: <what> needs an estimated N MiB, more than the M MiB this process
-// may use (its share of physical memory, ulimit -v)<hint>" when `bytes` exceed
-// usableMemoryBytes().
+// may use (its share of physical memory, ulimit -v)<hint>" when `bytes` exceed `usable` (by
+// default usableMemoryBytes() now).
 void requireEstimate(uint64_t bytes, const std::string& scene, const std::string& what,
-                     const std::string& hint = "");
+                     const std::string& hint = "", uint64_t usable = usableMemoryBytes());
 
 }  // namespace lzb::regions
