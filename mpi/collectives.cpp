@@ -38,14 +38,23 @@ void allreduceInPlace(const Group& g, void* data, size_t n, MPI_Datatype type, M
   if (n) LZB_MPI_CALL(MPI_Allreduce(MPI_IN_PLACE, data, int(n), type, op, g.comm));
 }
 
-Bounds boundsOverRanks(const Group& g, const Bounds& box) {
-  // One reduction: the least of each low corner and of each high corner negated.
-  double v[6] = {box.lo.x, box.lo.y, box.lo.z, -box.hi.x, -box.hi.y, -box.hi.z};
-  allreduceInPlace(g, v, 6, MPI_DOUBLE, MPI_MIN);
-  Bounds all;
-  all.lo = {v[0], v[1], v[2]};
-  all.hi = {-v[3], -v[4], -v[5]};
-  return all;
+void boundsOverRanks(const Group& g, std::span<Bounds> boxes) {
+  // The least of each low corner and of each high corner negated.
+  std::vector<double> v;
+  v.reserve(6 * boxes.size());
+  for (const Bounds& b : boxes)
+    v.insert(v.end(), {b.lo.x, b.lo.y, b.lo.z, -b.hi.x, -b.hi.y, -b.hi.z});
+  allreduceInPlace(g, v.data(), v.size(), MPI_DOUBLE, MPI_MIN);
+  for (size_t i = 0; i < boxes.size(); ++i) {
+    const double* b = &v[6 * i];
+    boxes[i].lo = {b[0], b[1], b[2]};
+    boxes[i].hi = {-b[3], -b[4], -b[5]};
+  }
+}
+
+Bounds boundsOverRanks(const Group& g, Bounds box) {
+  boundsOverRanks(g, std::span<Bounds>(&box, 1));
+  return box;
 }
 
 }  // namespace lzb::mpi

@@ -2,6 +2,7 @@
 // Small collectives over strings, flags and boxes (reports, messages, root-only checks, what the
 // ranks reading a file in slices agree on).
 #include <cstddef>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -18,7 +19,9 @@ bool broadcastFlag(const Group& g, bool value);
 std::string broadcastString(const Group& g, const std::string& value, int from = 0);
 // MPI_Allreduce in place of `n` items (none: no call).
 void allreduceInPlace(const Group& g, void* data, size_t n, MPI_Datatype type, MPI_Op op);
-// The box around every rank's `box` (empty ones included: an empty box on every rank stays empty).
-Bounds boundsOverRanks(const Group& g, const Bounds& box);
+// Each box made the box around every rank's (empty ones included: a box empty on every rank stays
+// empty), in one reduction.
+void boundsOverRanks(const Group& g, std::span<Bounds> boxes);
+Bounds boundsOverRanks(const Group& g, Bounds box);
 
 }  // namespace lzb::mpi

@@ -15,6 +15,13 @@ IdRange shareRange(uint64_t total, const WorkShare& share) {
   return {start(rank), start(rank + 1)};
 }
 
+int shareRankOf(uint64_t item, uint64_t total, int size) {
+  const uint64_t q = total / uint64_t(size), r = total % uint64_t(size);
+  // The first r ranks hold q + 1 items, the others q.
+  if (item < r * (q + 1)) return int(item / (q + 1));
+  return int(r + (item - r * (q + 1)) / q);
+}
+
 std::vector<int> ScreenTiles::owned(const WorkShare& share) const {
   std::vector<int> out;
   for (int t = share.rank; t < count(); t += share.size) out.push_back(t);

@@ -30,6 +30,8 @@ struct IdRange {
 
 // Splits [0, total) into share.size ranges whose lengths differ by at most one, in rank order.
 IdRange shareRange(uint64_t total, const WorkShare& share);
+// The rank of `size` whose shareRange of [0, total) holds `item` (< total).
+int shareRankOf(uint64_t item, uint64_t total, int size);
 
 // ---- Screen tiles
 

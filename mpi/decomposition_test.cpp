@@ -17,6 +17,11 @@ TEST(Decomposition, IdRangesCoverTheTotalOnceInRankOrder) {
       for (int rank = 0; rank < size; ++rank) {
         const IdRange r = shareRange(total, {rank, size});
         EXPECT_EQ(r.begin, next);
+        // The holder of a range's first and last items is its rank.
+        if (r.end > r.begin) {
+          EXPECT_EQ(shareRankOf(r.begin, total, size), rank);
+          EXPECT_EQ(shareRankOf(r.end - 1, total, size), rank);
+        }
         longest = std::max(longest, r.end - r.begin);
         shortest = std::min(shortest, r.end - r.begin);
         next = r.end;

@@ -1,8 +1,8 @@
 #include "src/cli/judge.hpp"
 
 #include "src/cli/methods.hpp"
-#include "src/regions/part_renderer.hpp"
 #include "src/core/timer.hpp"
+#include "src/regions/part_renderer.hpp"
 
 namespace lzb {
 

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <limits>
 #include <numeric>
 
 #include "mpi/collectives.hpp"
@@ -34,20 +33,13 @@ struct Node {
 // The widest axis of each node's units over all ranks, as splitRange takes it.
 std::vector<int> widestAxes(const mpi::Group& g, std::span<const glm::dvec3> centres,
                             const std::vector<uint32_t>& order, const std::vector<Node>& nodes) {
-  // Per node: the least of each coordinate and of each coordinate negated (the greatest).
-  std::vector<double> box(6 * nodes.size(), std::numeric_limits<double>::max());
+  std::vector<Bounds> boxes(nodes.size());
   for (size_t a = 0; a < nodes.size(); ++a)
-    for (size_t i = nodes[a].begin; i < nodes[a].end; ++i)
-      for (int k = 0; k < 3; ++k) {
-        const double c = centres[order[i]][k];
-        box[6 * a + size_t(k)] = std::min(box[6 * a + size_t(k)], c);
-        box[6 * a + 3 + size_t(k)] = std::min(box[6 * a + 3 + size_t(k)], -c);
-      }
-  mpi::allreduceInPlace(g, box.data(), box.size(), MPI_DOUBLE, MPI_MIN);
+    for (size_t i = nodes[a].begin; i < nodes[a].end; ++i) boxes[a].extend(centres[order[i]]);
+  mpi::boundsOverRanks(g, boxes);
   std::vector<int> axes(nodes.size());
   for (size_t a = 0; a < nodes.size(); ++a) {
-    const double* b = &box[6 * a];
-    const glm::dvec3 extent = glm::dvec3(-b[3], -b[4], -b[5]) - glm::dvec3(b[0], b[1], b[2]);
+    const glm::dvec3 extent = boxes[a].extent();
     axes[a] = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
   }
   return axes;

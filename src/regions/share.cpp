@@ -1,9 +1,5 @@
 #include "src/regions/share.hpp"
 
-#include <algorithm>
-#include <array>
-#include <limits>
-
 #include "src/core/error.hpp"
 
 namespace lzb::regions {

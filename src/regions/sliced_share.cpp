@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <memory>
 #include <span>
 #include <vector>
@@ -38,13 +37,6 @@ void handBackFreedPages() {
 bool plyExtension(const std::string& path) {
   const std::string ext = std::filesystem::path(path).extension().string();
   return ext == ".ply" || ext == ".PLY";
-}
-
-// The rank whose shareRange of `count` items holds item i.
-int holderOf(uint64_t i, uint64_t count, int size) {
-  const uint64_t q = count / uint64_t(size), r = count % uint64_t(size);
-  if (i < r * (q + 1)) return int(i / (q + 1));
-  return int(r + (i - r * (q + 1)) / q);
 }
 
 // Writes items [first, first + count) of those this rank sends rank `to` into `out`.
@@ -133,7 +125,7 @@ bool readSlice(const mpi::Group& g, PlySlices& file, Slice& slice) {
   if (first[0] != ~uint64_t(0)) return false;
   if (first[1] == ~uint64_t(0)) return true;
   const std::string error =
-      mpi::broadcastString(g, read.error, holderOf(first[1], file.faces(), g.size));
+      mpi::broadcastString(g, read.error, shareRankOf(first[1], file.faces(), g.size));
   mpi::agree(g, [&] { throw InputError(file.where() + ": " + error); });
   return false;
 }
@@ -159,7 +151,7 @@ void fetchVertices(const mpi::Group& g, uint64_t vertexCount, uint64_t chunkByte
   needed.erase(std::unique(needed.begin(), needed.end()), needed.end());
   needed.shrink_to_fit();
   std::vector<uint64_t> asks(size_t(g.size), 0);
-  for (const uint32_t v : needed) ++asks[size_t(holderOf(v, vertexCount, g.size))];
+  for (const uint32_t v : needed) ++asks[size_t(shareRankOf(v, vertexCount, g.size))];
   std::vector<uint64_t> answerCounts;  // what each rank asked of this one
   const std::vector<uint32_t> asked =
       exchange<uint32_t>(g, needed, asks, chunkBytes, &answerCounts);

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 
-#include "src/core/error.hpp"
-
 namespace lzb {
 
 namespace {
@@ -33,7 +31,10 @@ PlyReader PlySlices::reader(uint64_t offset, uint64_t end) const {
 std::unique_ptr<PlySlices> PlySlices::open(const std::filesystem::path& path, std::string& why) {
   std::unique_ptr<PlySlices> s(new PlySlices(path));
   std::error_code ec;
-  require(std::filesystem::is_regular_file(path, ec), s->where_, "file not found");
+  if (!std::filesystem::is_regular_file(path, ec)) {
+    why = "not a regular file";  // the stream says which way, as the loader does
+    return nullptr;
+  }
   PlyHead head = readPlyHead(path, s->where_, why);
   s->bytesRead_ = head.bytesRead;
   if (!why.empty()) return nullptr;
